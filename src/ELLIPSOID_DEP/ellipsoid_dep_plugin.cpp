@@ -1,0 +1,90 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP: the plugin entry point. LAMMPS loads ellipsoiddepplugin.so from
+   LAMMPS_PLUGIN_PATH (or "plugin load") and calls lammpsplugin_init, which registers
+   every style of the package.
+------------------------------------------------------------------------- */
+
+#include "lammpsplugin.h"
+#include "version.h"
+
+#if __has_include("compute_contact_histo.h")
+#include "compute_contact_histo.h"
+#define HAVE_COMPUTECONTACTHISTO
+#endif
+#if __has_include("compute_orient_histo.h")
+#include "compute_orient_histo.h"
+#define HAVE_COMPUTEORIENTHISTO
+#endif
+#if __has_include("compute_packing_ellipsoid.h")
+#include "compute_packing_ellipsoid.h"
+#define HAVE_COMPUTEPACKINGELLIPSOID
+#endif
+#if __has_include("fix_pour_ellipsoid.h")
+#include "fix_pour_ellipsoid.h"
+#define HAVE_FIXPOURELLIPSOID
+#endif
+#if __has_include("fix_wall_gran_ellipsoid.h")
+#include "fix_wall_gran_ellipsoid.h"
+#define HAVE_FIXWALLGRANELLIPSOID
+#endif
+#include "pair_granular_ellipsoid.h"
+
+using namespace LAMMPS_NS;
+
+namespace {
+template <class Style, class Base> Base *create(LAMMPS *lmp)
+{
+  return new Style(lmp);
+}
+template <class Style, class Base> Base *create_with_args(LAMMPS *lmp, int narg, char **arg)
+{
+  return new Style(lmp, narg, arg);
+}
+
+void register_style(lammpsplugin_regfunc register_plugin, void *lmp, void *handle,
+                    const char *style, const char *name, const char *info, void *creator)
+{
+  lammpsplugin_t plugin;
+  plugin.version = LAMMPS_VERSION;
+  plugin.style = style;
+  plugin.name = name;
+  plugin.info = info;
+  plugin.author = "ELLIPSOID_DEP developers";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) creator;
+  plugin.handle = handle;
+  (*register_plugin)(&plugin, lmp);
+}
+}    // namespace
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  auto reg = (lammpsplugin_regfunc) regfunc;
+  register_style(reg, lmp, handle, "pair", "granular/ellipsoid",
+                 "general ellipsoid contact (Wang test, cached planes, corrected Perram contact)",
+                 (void *) &create<PairGranularEllipsoid, Pair>);
+#ifdef HAVE_FIXPOURELLIPSOID
+  register_style(reg, lmp, handle, "fix", "pour/ellipsoid",
+                 "pour polydisperse general ellipsoids",
+                 (void *) &create_with_args<FixPourEllipsoid, Fix>);
+#endif
+#ifdef HAVE_FIXWALLGRANELLIPSOID
+  register_style(reg, lmp, handle, "fix", "wall/gran/ellipsoid",
+                 "plane walls for general ellipsoids",
+                 (void *) &create_with_args<FixWallGranEllipsoid, Fix>);
+#endif
+#ifdef HAVE_COMPUTEPACKINGELLIPSOID
+  register_style(reg, lmp, handle, "compute", "packing/ellipsoid",
+                 "volume fraction and coordination number of an ellipsoid deposit",
+                 (void *) &create_with_args<ComputePackingEllipsoid, Compute>);
+#endif
+#ifdef HAVE_COMPUTECONTACTHISTO
+  register_style(reg, lmp, handle, "compute", "contact/histo",
+                 "histogram of contact-normal angles with +z",
+                 (void *) &create_with_args<ComputeContactHisto, Compute>);
+#endif
+#ifdef HAVE_COMPUTEORIENTHISTO
+  register_style(reg, lmp, handle, "compute", "orient/histo",
+                 "histogram of principal-axis angles with +z",
+                 (void *) &create_with_args<ComputeOrientHisto, Compute>);
+#endif
+}

@@ -1,0 +1,66 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP: read access to ellipsoid atoms (see granular_ellipsoid_atoms.h)
+------------------------------------------------------------------------- */
+
+#include "granular_ellipsoid_atoms.h"
+
+#include "atom.h"
+#include "atom_vec_ellipsoid.h"
+#include "math_extra.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+static constexpr double INERTIA = 0.2;    // solid ellipsoid: I_x = m (b^2 + c^2) / 5
+
+EllipsoidAtoms::EllipsoidAtoms(Atom *atom_in) :
+    atom(atom_in), avec(dynamic_cast<AtomVecEllipsoid *>(atom_in->style_match("ellipsoid"))),
+    super(atom_in->superellipsoid_flag != 0)
+{
+}
+
+bool EllipsoidAtoms::has_shape(int i) const
+{
+  return atom->ellipsoid[i] >= 0;
+}
+
+const double *EllipsoidAtoms::shape(int i) const
+{
+  const int k = atom->ellipsoid[i];
+  return super ? avec->bonus_super[k].shape : avec->bonus[k].shape;
+}
+
+const double *EllipsoidAtoms::quat(int i) const
+{
+  const int k = atom->ellipsoid[i];
+  return super ? avec->bonus_super[k].quat : avec->bonus[k].quat;
+}
+
+void EllipsoidAtoms::inertia(int i, double *moments) const
+{
+  if (super) {
+    std::memcpy(moments, avec->bonus_super[atom->ellipsoid[i]].inertia, 3 * sizeof(double));
+    return;
+  }
+  const double *s = shape(i);
+  const double m = atom->rmass[i];
+  moments[0] = INERTIA * m * (s[1] * s[1] + s[2] * s[2]);
+  moments[1] = INERTIA * m * (s[0] * s[0] + s[2] * s[2]);
+  moments[2] = INERTIA * m * (s[0] * s[0] + s[1] * s[1]);
+}
+
+void EllipsoidAtoms::omega(int i, double *w) const
+{
+  double q[4], moments[3];
+  std::memcpy(q, quat(i), sizeof(q));
+  inertia(i, moments);
+  MathExtra::mq_to_omega(atom->angmom[i], q, moments, w);
+}
+
+EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
+{
+  const double *s = shape(i);
+  return EllipsoidDep::make_ellipsoid(EllipsoidDep::Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]),
+                                      quat(i), EllipsoidDep::Vec3(s[0], s[1], s[2]));
+}

