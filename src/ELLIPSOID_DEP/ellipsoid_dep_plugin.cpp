@@ -7,26 +7,11 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
-#if __has_include("compute_contact_histo.h")
 #include "compute_contact_histo.h"
-#define HAVE_COMPUTECONTACTHISTO
-#endif
-#if __has_include("compute_orient_histo.h")
 #include "compute_orient_histo.h"
-#define HAVE_COMPUTEORIENTHISTO
-#endif
-#if __has_include("compute_packing_ellipsoid.h")
 #include "compute_packing_ellipsoid.h"
-#define HAVE_COMPUTEPACKINGELLIPSOID
-#endif
-#if __has_include("fix_pour_ellipsoid.h")
 #include "fix_pour_ellipsoid.h"
-#define HAVE_FIXPOURELLIPSOID
-#endif
-#if __has_include("fix_wall_gran_ellipsoid.h")
 #include "fix_wall_gran_ellipsoid.h"
-#define HAVE_FIXWALLGRANELLIPSOID
-#endif
 #include "pair_granular_ellipsoid.h"
 
 using namespace LAMMPS_NS;
@@ -62,29 +47,19 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "pair", "granular/ellipsoid",
                  "general ellipsoid contact (Wang test, cached planes, corrected Perram contact)",
                  (void *) &create<PairGranularEllipsoid, Pair>);
-#ifdef HAVE_FIXPOURELLIPSOID
   register_style(reg, lmp, handle, "fix", "pour/ellipsoid",
                  "pour polydisperse general ellipsoids",
                  (void *) &create_with_args<FixPourEllipsoid, Fix>);
-#endif
-#ifdef HAVE_FIXWALLGRANELLIPSOID
   register_style(reg, lmp, handle, "fix", "wall/gran/ellipsoid",
                  "plane walls for general ellipsoids",
                  (void *) &create_with_args<FixWallGranEllipsoid, Fix>);
-#endif
-#ifdef HAVE_COMPUTEPACKINGELLIPSOID
   register_style(reg, lmp, handle, "compute", "packing/ellipsoid",
                  "volume fraction and coordination number of an ellipsoid deposit",
                  (void *) &create_with_args<ComputePackingEllipsoid, Compute>);
-#endif
-#ifdef HAVE_COMPUTECONTACTHISTO
   register_style(reg, lmp, handle, "compute", "contact/histo",
                  "histogram of contact-normal angles with +z",
                  (void *) &create_with_args<ComputeContactHisto, Compute>);
-#endif
-#ifdef HAVE_COMPUTEORIENTHISTO
   register_style(reg, lmp, handle, "compute", "orient/histo",
                  "histogram of principal-axis angles with +z",
                  (void *) &create_with_args<ComputeOrientHisto, Compute>);
-#endif
 }

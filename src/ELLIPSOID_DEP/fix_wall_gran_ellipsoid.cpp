@@ -1,0 +1,338 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP: fix wall/gran/ellipsoid (see doc/fix_wall_gran_ellipsoid.rst)
+
+   Each wall is a plane; the particle is body i and the wall body j at rest (v_j = omega_j
+   = 0, effective mass m_i). The geometry comes from EllipsoidDep::ellipsoid_plane_contact
+   and the force from ForceLaw::compute, the one definition the pair style uses too.
+------------------------------------------------------------------------- */
+
+#include "fix_wall_gran_ellipsoid.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+#include "update.h"
+
+#include "granular_ellipsoid_atoms.h"
+#include "granular_materials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using namespace EllipsoidDep;
+
+/* ----------------------------------------------------------------------
+   fix ID group wall/gran/ellipsoid <force-law words> zplane lo hi [xplane lo hi] ...
+------------------------------------------------------------------------- */
+
+FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true),
+    force_flag(0)
+{
+  if (narg < 4) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid", error);
+  if (!atom->ellipsoid_flag)
+    error->all(FLERR, "Fix wall/gran/ellipsoid requires atom_style ellipsoid");
+  if (!atom->rmass_flag || !atom->angmom_flag || !atom->torque_flag)
+    error->all(FLERR, "Fix wall/gran/ellipsoid requires per-atom mass, angmom and torque");
+
+  // the force law: exactly the words pair_coeff takes
+  std::vector<std::string> words(arg + 3, arg + narg);
+  std::string message;
+  const int used = parse_force_law(words, law, message, material_lookup(lmp));
+  if (used < 0) error->all(FLERR, "Fix wall/gran/ellipsoid: {}", message);
+
+  // walls
+  int iarg = 3 + used;
+  if (iarg >= narg)
+    error->all(FLERR, "Fix wall/gran/ellipsoid needs at least one wall (xplane, yplane or "
+                      "zplane lo hi) after the force law");
+  bool seen[3] = {false, false, false};
+  while (iarg < narg) {
+    const std::string word = arg[iarg];
+    int dim = -1;
+    if (word == "xplane") dim = 0;
+    else if (word == "yplane") dim = 1;
+    else if (word == "zplane") dim = 2;
+    if (dim < 0)
+      error->all(FLERR, iarg, "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
+                 "yplane or zplane, or a force-law word)", word);
+    if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
+    seen[dim] = true;
+    if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
+    if (domain->periodicity[dim])
+      error->all(FLERR, iarg, "Cannot use fix wall/gran/ellipsoid {} in a periodic dimension",
+                 word);
+    for (int k = 0; k < 2; k++) {
+      const char *value = arg[iarg + 1 + k];
+      if (strcmp(value, "NULL") == 0) continue;
+      if (!utils::is_double(value))
+        error->all(FLERR, iarg + 1 + k, "Fix wall/gran/ellipsoid {} {}: expected a number or "
+                   "NULL, got '{}'", word, k == 0 ? "lo" : "hi", value);
+      Wall w;
+      w.dim = dim;
+      w.side = k == 0 ? -1 : 1;
+      w.coord = utils::numeric(FLERR, value, false, lmp);
+      w.normal = Vec3::Zero();
+      w.normal[dim] = k == 0 ? 1.0 : -1.0;
+      w.offset = k == 0 ? w.coord : -w.coord;
+      walls.push_back(w);
+    }
+    const char *lo = arg[iarg + 1], *hi = arg[iarg + 2];
+    if (strcmp(lo, "NULL") != 0 && strcmp(hi, "NULL") != 0 &&
+        !(utils::numeric(FLERR, lo, false, lmp) < utils::numeric(FLERR, hi, false, lmp)))
+      error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid {}: lo {} must be below hi {}", word,
+                 lo, hi);
+    iarg += 3;
+  }
+  if (walls.empty())
+    error->all(FLERR, "Fix wall/gran/ellipsoid: every wall is NULL; nothing to do");
+
+  const int nwalls = static_cast<int>(walls.size());
+  vector_flag = 1;
+  size_vector = 3 * nwalls;
+  global_freq = 1;
+  extvector = 1;
+  create_attribute = 1;
+  dynamic_group_allow = 1;
+
+  wall_force.assign(3 * nwalls, 0.0);
+  wall_force_all.assign(3 * nwalls, 0.0);
+
+  size_history = law.history_size() > 0 ? 3 * nwalls : 0;
+  restart_peratom = size_history > 0 ? 1 : 0;
+  maxexchange = size_history;
+  if (size_history) {
+    grow_arrays(atom->nmax);
+    atom->add_callback(Atom::GROW);
+    atom->add_callback(Atom::RESTART);
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int m = 0; m < size_history; m++) history_one[i][m] = 0.0;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixWallGranEllipsoid::~FixWallGranEllipsoid()
+{
+  if (size_history) {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+  }
+  memory->destroy(history_one);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixWallGranEllipsoid::setmask()
+{
+  int mask = 0;
+  mask |= POST_FORCE;
+  return mask;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallGranEllipsoid::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix wall/gran/ellipsoid does not support run_style respa");
+}
+
+/* ----------------------------------------------------------------------
+   A wall cutting through a particle's centre is an error (the contact would be
+   meaningless); an overlap deeper than half the smallest semi-axis is a warning.
+------------------------------------------------------------------------- */
+
+void FixWallGranEllipsoid::setup(int vflag)
+{
+  const EllipsoidAtoms atoms(atom);
+  const int nlocal = atom->nlocal;
+  double counts[2] = {0.0, 0.0};
+  for (int i = 0; i < nlocal; i++) {
+    if (!(atom->mask[i] & groupbit) || !atoms.has_shape(i)) continue;
+    const Ellipsoid e = atoms.ellipsoid(i);
+    const double thin = e.semi_axes.minCoeff();
+    for (const Wall &w : walls) {
+      if (w.normal.dot(e.center) - w.offset <= 0.0) {
+        counts[0] += 1.0;
+      } else {
+        const ContactGeometry g = ellipsoid_plane_contact(e, w.normal, w.offset);
+        if (g.overlap > 0.5 * thin) counts[1] += 1.0;
+      }
+    }
+  }
+  double all[2];
+  MPI_Allreduce(counts, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  if (all[0] > 0.0)
+    error->all(FLERR, "Fix wall/gran/ellipsoid: {:.0f} particle centre(s) lie on the solid side "
+                      "of a wall", all[0]);
+  if (all[1] > 0.0 && comm->me == 0)
+    error->warning(FLERR, "Fix wall/gran/ellipsoid: {:.0f} particle(s) overlap a wall by more "
+                          "than half their smallest semi-axis at setup", all[1]);
+
+  // setup forces must not advance the tangential history
+  history_update = false;
+  post_force(vflag);
+  history_update = true;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallGranEllipsoid::post_force(int /*vflag*/)
+{
+  wall_forces();
+}
+
+void FixWallGranEllipsoid::wall_forces()
+{
+  force_flag = 0;
+  std::fill(wall_force.begin(), wall_force.end(), 0.0);
+
+  const EllipsoidAtoms atoms(atom);
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **torque = atom->torque;
+  double *rmass = atom->rmass;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double dt = update->dt;
+  const int nwalls = static_cast<int>(walls.size());
+  const bool with_history = size_history > 0;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit) || !atoms.has_shape(i)) continue;
+    const double *s = atoms.shape(i);
+    const double bound = std::max(s[0], std::max(s[1], s[2]));
+    bool built = false, have_omega = false;
+    Ellipsoid e;
+    Vec3 omega;
+
+    for (int k = 0; k < nwalls; k++) {
+      const Wall &w = walls[k];
+      double *history = with_history ? &history_one[i][3 * k] : nullptr;
+      // bounding sphere clear of the plane: no contact
+      const double height = w.normal[w.dim] * x[i][w.dim] - w.offset;
+      ContactGeometry g;
+      if (height < bound) {
+        if (!built) {
+          e = atoms.ellipsoid(i);
+          built = true;
+        }
+        g = ellipsoid_plane_contact(e, w.normal, w.offset);
+      }
+      if (g.status != Status::Overlapping) {
+        if (history && history_update) history[0] = history[1] = history[2] = 0.0;
+        continue;
+      }
+      if (!have_omega) {
+        atoms.omega(i, omega.data());
+        have_omega = true;
+      }
+      ContactMotion motion;
+      motion.v_i = Vec3(v[i][0], v[i][1], v[i][2]);
+      motion.omega_i = omega;
+      motion.branch_i = g.point - e.center;
+      motion.effective_mass = rmass[i];
+
+      double scratch[3];
+      double *hist = history;
+      if (history && !history_update) {
+        std::memcpy(scratch, history, sizeof(scratch));
+        hist = scratch;
+      }
+      const ContactForce result = law.compute(g, motion, dt, hist);
+      for (int d = 0; d < 3; d++) {
+        f[i][d] += result.force_i[d];
+        torque[i][d] += result.torque_i[d];
+        wall_force[3 * k + d] -= result.force_i[d];
+      }
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   total force on wall n/3 (in the order the walls were given, lo before hi),
+   component n%3
+------------------------------------------------------------------------- */
+
+double FixWallGranEllipsoid::compute_vector(int n)
+{
+  if (force_flag == 0) {
+    MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
+                  MPI_DOUBLE, MPI_SUM, world);
+    force_flag = 1;
+  }
+  return wall_force_all[n];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixWallGranEllipsoid::memory_usage()
+{
+  return static_cast<double>(atom->nmax) * size_history * sizeof(double);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallGranEllipsoid::grow_arrays(int nmax)
+{
+  if (size_history) memory->grow(history_one, nmax, size_history, "wall/gran/ellipsoid:history");
+}
+
+void FixWallGranEllipsoid::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int m = 0; m < size_history; m++) history_one[j][m] = history_one[i][m];
+}
+
+void FixWallGranEllipsoid::set_arrays(int i)
+{
+  for (int m = 0; m < size_history; m++) history_one[i][m] = 0.0;
+}
+
+int FixWallGranEllipsoid::pack_exchange(int i, double *buf)
+{
+  for (int m = 0; m < size_history; m++) buf[m] = history_one[i][m];
+  return size_history;
+}
+
+int FixWallGranEllipsoid::unpack_exchange(int nlocal, double *buf)
+{
+  for (int m = 0; m < size_history; m++) history_one[nlocal][m] = buf[m];
+  return size_history;
+}
+
+int FixWallGranEllipsoid::pack_restart(int i, double *buf)
+{
+  if (!size_history) return 0;
+  // buf[0] = count including itself, the convention other fixes unpack by
+  buf[0] = size_history + 1;
+  for (int m = 0; m < size_history; m++) buf[m + 1] = history_one[i][m];
+  return size_history + 1;
+}
+
+void FixWallGranEllipsoid::unpack_restart(int nlocal, int nth)
+{
+  if (!size_history) return;
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  for (int k = 0; k < size_history; k++) history_one[nlocal][k] = extra[nlocal][m++];
+}
+
+int FixWallGranEllipsoid::size_restart(int /*nlocal*/)
+{
+  return size_history ? size_history + 1 : 0;
+}
+
+int FixWallGranEllipsoid::maxsize_restart()
+{
+  return size_history ? size_history + 1 : 0;
+}

@@ -1,0 +1,308 @@
+"""fix pour/ellipsoid: size distribution, shape, orientation, overlaps, restart, errors.
+
+Statistical tests use fixed seeds; each states its threshold. They are able to fail: the
+size test also checks that the same sample is REJECTED against the (wrong) volume
+distribution, and the overlap checker is shown to flag a known overlapping pair.
+"""
+
+import math
+import re
+
+import numpy as np
+import pytest
+from scipy import integrate, special, stats
+
+import ed_helpers_pour as h
+
+RMIN, RMAX, ALPHA, BETA = 0.02, 0.06, 3.0, 3.0
+ETA, ZETA = 1.4, 1.8
+
+
+def base_commands(box=(0, 1, 0, 1, 0, 1), boundary="p p f"):
+    return [
+        "units si",
+        "atom_style ellipsoid",
+        f"boundary {boundary}",
+        "region box block {} {} {} {} {} {}".format(*box),
+        "create_box 1 box",
+        "comm_modify vel yes",
+    ]
+
+
+def number_cdf(rmin, rmax, a, b):
+    """CDF of the number distribution n(r) ~ (r-rmin)^(a-1) (rmax-r)^(b-1) / r^3."""
+    f = lambda r: (r - rmin) ** (a - 1) * (rmax - r) ** (b - 1) / r ** 3
+    norm = integrate.quad(f, rmin, rmax, epsabs=0, epsrel=1e-12)[0]
+    grid = np.linspace(rmin, rmax, 2001)
+    cum = np.concatenate([[0.0], np.cumsum([integrate.quad(f, grid[k], grid[k + 1],
+                                                           epsabs=0, epsrel=1e-12)[0]
+                                            for k in range(len(grid) - 1)])]) / norm
+    return lambda r: np.interp(r, grid, cum)
+
+
+@pytest.fixture(scope="module")
+def big_pour(tmp_path_factory):
+    """~3000 ellipsoids inserted in one batch at a low volume fraction (no size bias from
+    failed insertions), no dynamics."""
+    work = tmp_path_factory.mktemp("bigpour")
+    lmp = h.new_lammps(work)
+    for c in base_commands(box=(0, 4, 0, 4, 0, 4)):
+        lmp.command(c)
+    lmp.command("region ins block 0 4 0 4 0.5 3.5")
+    lmp.command(f"fix p all pour/ellipsoid 3000 1 12345 region ins size {RMIN} {RMAX} "
+                f"alpha {ALPHA} beta {BETA} shape {ETA} {ZETA} density 2500 vol 0.03 50 every 1")
+    lmp.command("run 1")
+    snap = h.snapshot(lmp, work)
+    inserted = lmp.extract_fix("p", 0, 1, 0)
+    failed = lmp.extract_fix("p", 0, 1, 1)
+    log = h.read_log(lmp)
+    lmp.close()
+    return snap, inserted, failed, log
+
+
+def test_all_inserted(big_pour):
+    snap, inserted, failed, _ = big_pour
+    assert len(snap["id"]) == 3000
+    assert inserted == 3000 and failed == 0
+    assert sorted(snap["id"]) == list(range(1, 3001))
+
+
+def test_shape_ratios_exact(big_pour):
+    snap = big_pour[0]
+    a, b, c = snap["semi"].T
+    # full-precision dump: ratios exact to round-off
+    assert np.allclose(a / b, ETA, rtol=1e-13, atol=0)
+    assert np.allclose(b / c, ZETA, rtol=1e-13, atol=0)
+    r = np.cbrt(a * b * c)
+    assert r.min() >= RMIN * (1 - 1e-13) and r.max() <= RMAX * (1 + 1e-13)
+    # mass = rho 4/3 pi abc
+    assert np.allclose(snap["mass"], 2500 * 4 / 3 * math.pi * a * b * c, rtol=1e-13, atol=0)
+
+
+def test_size_follows_volume_distribution(big_pour):
+    """KS test of r against the NUMBER distribution n(r) ~ V(r)/r^3 (p > 0.01 required),
+    and against V(r) itself, which must be rejected (p < 1e-6): the test has power."""
+    snap = big_pour[0]
+    r = np.cbrt(np.prod(snap["semi"], axis=1))
+    cdf = number_cdf(RMIN, RMAX, ALPHA, BETA)
+    p_number = stats.kstest(r, cdf).pvalue
+    assert p_number > 0.01, p_number
+    beta_cdf = lambda x: special.betainc(ALPHA, BETA, (x - RMIN) / (RMAX - RMIN))
+    p_volume = stats.kstest(r, beta_cdf).pvalue
+    assert p_volume < 1e-6, p_volume
+    # volume-weighted sample vs the V(r) CDF: weighted KS distance with n_eff, 1% level
+    order = np.argsort(r)
+    w = r[order] ** 3
+    ecdf = np.cumsum(w) / w.sum()
+    dist = np.max(np.abs(ecdf - beta_cdf(r[order])))
+    n_eff = w.sum() ** 2 / (w ** 2).sum()
+    assert dist * math.sqrt(n_eff) < 1.63, (dist, n_eff)
+
+
+def test_orientation_uniform(big_pour):
+    """Each body axis is uniform on the sphere: cos(theta) with z uniform on [-1, 1] and the
+    azimuth uniform on [0, 2 pi) (KS, p > 0.001 for each of the 6 tests)."""
+    snap = big_pour[0]
+    rots = np.array([h.rotation(q) for q in snap["quat"]])
+    for axis in range(3):
+        u = rots[:, :, axis]
+        p_cos = stats.kstest(u[:, 2], stats.uniform(loc=-1, scale=2).cdf).pvalue
+        phi = np.mod(np.arctan2(u[:, 1], u[:, 0]), 2 * np.pi)
+        p_phi = stats.kstest(phi, stats.uniform(loc=0, scale=2 * np.pi).cdf).pvalue
+        assert p_cos > 1e-3 and p_phi > 1e-3, (axis, p_cos, p_phi)
+
+
+def test_extract_radius_sets_pair_cutoff(tmp_path):
+    """extract("radius") = largest semi-axis = rmax eta^(2/3) zeta^(1/3); the pair sizes its
+    cutoff from it before any particle exists."""
+    lmp = h.new_lammps(tmp_path)
+    for c in base_commands():
+        lmp.command(c)
+    lmp.command("region ins block 0 1 0 1 0.5 1")
+    lmp.command(f"fix p all pour/ellipsoid 10 1 5 region ins size {RMIN} {RMAX} "
+                f"shape {ETA} {ZETA} dshape 0.1 0.2 every 100")
+    lmp.command("pair_style granular/ellipsoid")
+    lmp.command("pair_coeff * * hertz 1e5 10")
+    lmp.command("neighbor 0.01 bin")
+    lmp.command("run 0")
+    log = h.read_log(lmp)
+    lmp.close()
+    cut = float(re.search(r"master list distance cutoff = ([0-9.eE+-]+)", log).group(1))
+    a_max = RMAX * (ETA * 1.1) ** (2 / 3) * (ZETA * 1.2) ** (1 / 3)
+    assert cut == pytest.approx(2 * a_max + 0.01, rel=1e-6)
+
+
+def test_no_insertion_overlaps(tmp_path):
+    """A dense batch (volume fraction 0.3, periodic x y): every pair whose bounding spheres
+    meet is proven disjoint by an independent separating-axis search."""
+    lmp = h.new_lammps(tmp_path)
+    for c in base_commands(box=(0, 0.4, 0, 0.4, 0, 1)):
+        lmp.command(c)
+    lmp.command("region ins block 0 0.4 0 0.4 0.6 1.0")
+    lmp.command(f"fix p all pour/ellipsoid 400 1 777 region ins size 0.02 0.04 "
+                f"shape 2.0 1.5 vol 0.3 200 every 1000")
+    lmp.command("run 1")
+    snap = h.snapshot(lmp, tmp_path)
+    rejected = lmp.extract_fix("p", 0, 1, 2)
+    lmp.close()
+    n = len(snap["id"])
+    assert n > 100
+    assert rejected > 0  # the test exercised the overlap rejection
+    box = snap["box"]
+    checked = 0
+    for i in range(n):
+        for j in range(i + 1, n):
+            d = h.minimum_image(snap["x3"][j] - snap["x3"][i], box, (True, True, False))
+            reach = snap["semi"][i].max() + snap["semi"][j].max()
+            if d @ d > reach * reach:
+                continue
+            gap, _ = h.separating_axis(np.zeros(3), snap["quat"][i], snap["semi"][i], d,
+                                       snap["quat"][j], snap["semi"][j])
+            assert gap < 0.0, (snap["id"][i], snap["id"][j], gap)
+            checked += 1
+    assert checked > 20  # close pairs existed
+
+
+def test_overlap_checker_detects_overlap():
+    """The independent checker reports no separating axis for overlapping ellipsoids."""
+    q = [1, 0, 0, 0]
+    gap, _ = h.separating_axis(np.zeros(3), q, [0.3, 0.1, 0.1], [0.35, 0.05, 0.0], q,
+                               [0.3, 0.1, 0.1])
+    assert gap > 0.0
+    gap, _ = h.separating_axis(np.zeros(3), q, [0.3, 0.1, 0.1], [0.0, 0.25, 0.0], q,
+                               [0.3, 0.1, 0.1])
+    assert gap < 0.0
+
+
+def pour_commands(seed=4242):
+    return base_commands(box=(0, 0.3, 0, 0.3, 0, 0.6)) + [
+        "region ins block 0 0.3 0 0.3 0.3 0.6",
+        "pair_style granular/ellipsoid",
+        "pair_coeff * * hertz 2e5 300 tangential history 5e4 0.5",
+        f"fix p all pour/ellipsoid 90 1 {seed} region ins size mean 0.025 delta_r 0.4 "
+        "shape 1.3 1.3 density 2500 vol 0.05 50 every 500",
+        "fix g all gravity 9.81 vector 0 0 -1",
+        "fix i all nve/asphere",
+        "fix w all wall/gran/ellipsoid hertz 2e5 300 tangential history 5e4 0.5 zplane 0 NULL",
+        "timestep 1e-4",
+    ]
+
+
+def test_restart_continues_pour(tmp_path):
+    """A pour written to a restart file mid-way and continued from it inserts the same
+    particles (same ids, shapes and insertion order) as the uninterrupted pour."""
+    steps, half = 2500, 700
+
+    lmp = h.new_lammps(tmp_path, "full")
+    for c in pour_commands():
+        lmp.command(c)
+    lmp.command(f"run {steps}")
+    full = h.snapshot(lmp, tmp_path, "full")
+    full_count = lmp.extract_fix("p", 0, 0)
+    lmp.close()
+
+    restart = tmp_path / "pour.restart"
+    lmp = h.new_lammps(tmp_path, "first")
+    for c in pour_commands():
+        lmp.command(c)
+    lmp.command(f"run {half}")
+    mid_count = lmp.extract_fix("p", 0, 0)
+    lmp.command(f"write_restart {restart}")
+    lmp.close()
+
+    lmp = h.new_lammps(tmp_path, "second")
+    lmp.command(f"read_restart {restart}")
+    lmp.command("comm_modify vel yes")
+    lmp.command("region ins block 0 0.3 0 0.3 0.3 0.6")
+    lmp.command("pair_coeff * * hertz 2e5 300 tangential history 5e4 0.5")
+    lmp.command("fix p all pour/ellipsoid 90 1 4242 region ins size mean 0.025 delta_r 0.4 "
+                "shape 1.3 1.3 density 2500 vol 0.05 50 every 500")
+    lmp.command("fix g all gravity 9.81 vector 0 0 -1")
+    lmp.command("fix i all nve/asphere")
+    lmp.command("fix w all wall/gran/ellipsoid hertz 2e5 300 tangential history 5e4 0.5 "
+                "zplane 0 NULL")
+    lmp.command("timestep 1e-4")
+    lmp.command(f"run {steps - half}")
+    cont = h.snapshot(lmp, tmp_path, "cont")
+    cont_count = lmp.extract_fix("p", 0, 0)
+    log = h.read_log(lmp)
+    lmp.close()
+
+    assert "Resetting global fix info from restart file" in log
+    assert 0 < mid_count < 90  # the restart really was in the middle of the pour
+    assert full_count == cont_count == 90
+    assert len(full["id"]) == len(cont["id"]) == 90
+    assert np.array_equal(full["id"], cont["id"])
+    # same random stream after the restart: identical shapes per id (dump precision)
+    assert np.allclose(full["semi"], cont["semi"], rtol=1e-14, atol=0)
+
+
+@pytest.mark.parametrize("args,pattern", [
+    ("10 1 5 region nope", r"region nope does not exist"),
+    ("10 1 5", r"requires the keyword 'region ID'"),
+    ("10 1 0 region ins", r"seed must be > 0"),
+    ("ten 1 5 region ins", r"N: expected an integer, got 'ten'"),
+    ("10 7 5 region ins", r"atom type 7 is not in 1..1"),
+    ("10 1 5 region ins size 0.1 abc", r"size rmax: expected a number, got 'abc'"),
+    ("10 1 5 region ins size 0 0.1", r"rmin must be > 0"),
+    ("10 1 5 region ins size 0.2 0.1", r"rmin 0.2 exceeds rmax 0.1"),
+    ("10 1 5 region ins size mean 0.1 delta_r 1.0", r"delta_r must be in \[0, 1\)"),
+    ("10 1 5 region ins size mean 0.1 dr 0.5", r"expected 'delta_r', got 'dr'"),
+    ("10 1 5 region ins alpha 0", r"alpha must be > 0"),
+    ("10 1 5 region ins beta -1", r"beta must be > 0"),
+    ("10 1 5 region ins shape 0.9 1", r"eta = a/b must be >= 1"),
+    ("10 1 5 region ins shape 1 0.5", r"zeta = b/c must be >= 1"),
+    ("10 1 5 region ins shape 1.1 1 dshape 0.5 0", r"eta \(1 - delta_eta\)"),
+    ("10 1 5 region ins bogus 3", r"Unknown fix pour/ellipsoid keyword 'bogus'"),
+    ("10 1 5 region ins size 1 1", r"region ins is too small"),
+    ("10 1 5 region xcyl", r"must be a z-axis cylinder"),
+])
+def test_errors(tmp_path, args, pattern):
+    lmp = h.new_lammps(tmp_path)
+    for c in base_commands():
+        lmp.command(c)
+    lmp.command("region ins block 0 1 0 1 0.5 1")
+    lmp.command("region xcyl cylinder x 0.5 0.5 0.3 0.1 0.9")
+    with pytest.raises(Exception) as err:
+        lmp.command(f"fix p all pour/ellipsoid {args}")
+    lmp.close()
+    assert re.search(pattern, str(err.value)), str(err.value)
+
+
+def test_error_atom_style(tmp_path):
+    lmp = h.new_lammps(tmp_path)
+    lmp.command("atom_style sphere")
+    lmp.command("region box block 0 1 0 1 0 1")
+    lmp.command("create_box 1 box")
+    with pytest.raises(Exception) as err:
+        lmp.command("fix p all pour/ellipsoid 10 1 5 region box")
+    lmp.close()
+    assert "requires atom_style ellipsoid" in str(err.value)
+
+
+def test_superellipsoid_variant(tmp_path):
+    """atom_style ellipsoid superellipsoid: block 2 2, stored inertia and radius consistent."""
+    lmp = h.new_lammps(tmp_path)
+    lmp.command("units si")
+    lmp.command("atom_style ellipsoid superellipsoid")
+    lmp.command("boundary p p f")
+    lmp.command("region box block 0 1 0 1 0 1")
+    lmp.command("create_box 1 box")
+    lmp.command("region ins block 0 1 0 1 0.5 1")
+    lmp.command(f"fix p all pour/ellipsoid 50 1 9 region ins size {RMIN} {RMAX} "
+                f"shape {ETA} {ZETA} density 1000 every 10")
+    lmp.command("run 1")
+    lmp.command("compute r all property/atom radius")
+    lmp.command("compute b all property/atom block1 block2")
+    lmp.command("run 0")
+    snap = h.snapshot(lmp, tmp_path)
+    radius = np.array(lmp.numpy.extract_compute("r", 1, 1))
+    blocks = np.array(lmp.numpy.extract_compute("b", 1, 2))
+    ids = np.array(lmp.numpy.extract_atom("id"))
+    lmp.close()
+    order = np.argsort(ids)
+    assert len(snap["id"]) == 50
+    assert np.allclose(blocks[order], 2.0)
+    assert np.allclose(radius[order], snap["semi"].max(axis=1), rtol=1e-13)
+    assert np.allclose(snap["mass"], 1000 * 4 / 3 * math.pi * np.prod(snap["semi"], axis=1),
+                       rtol=1e-13)
