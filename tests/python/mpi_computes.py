@@ -1,0 +1,101 @@
+"""Same results for compute packing/ellipsoid, contact/histo, orient/histo on 1 and 2 MPI ranks.
+
+Run as `mpirun -np 2 python3 mpi_computes.py`; exits non-zero on failure.
+
+Each configuration runs twice: once on all ranks (domain split along x, `processors * 1 1`,
+contacts straddling the split plane and the periodic boundary, so ghost contacts exist) and
+once with `-partition Nx1`, where every rank runs the same input serially. Global values are
+reduced on every rank, so each rank compares its own serial result with the parallel one.
+Both newton_pair settings are checked (off: a contact across ranks is in both ranks' lists;
+on: in one list only).
+"""
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lammps import lammps  # noqa: E402
+
+import test_computes as tc  # noqa: E402
+
+COMPUTES = """
+compute pk all packing/ellipsoid EDGE EDGE
+compute pr all packing/ellipsoid 1.2 6.0 rattler 3
+compute pa all packing/ellipsoid auto bottom 0.5 top 0.5
+compute pc all packing/ellipsoid auto bottom 0.5 top 0.5 surface columns
+compute ch all contact/histo bins 12
+compute cs all contact/histo bins 8 slab pa select center
+compute cz all contact/histo bins 8 zlo 1.0 zhi 2.0
+compute ol all orient/histo bins 10
+compute os all orient/histo axis short bins 7 fold yes slab pa
+region lowz block INF INF INF INF INF 1.6
+group low region lowz
+compute pg low packing/ellipsoid EDGE EDGE
+compute cg low contact/histo bins 8
+"""
+VECTORS = ["pk", "pr", "pa", "pc", "ch", "cs", "cz", "ol", "os", "pg", "cg"]
+ARRAYS = ["ch", "cs", "cz", "ol", "os", "cg"]
+
+
+def configurations():
+    box, parts, _ = tc.network()
+    yield "network", box, parts
+    box, parts = tc.oblate_stacks(ncol=4, height=5)
+    # shift by half a column: one column straddles the rank split, one the periodic boundary
+    L = box[0][1]
+    parts = [(np.array([(x[0] + 1.3) % L, x[1], x[2]]), s, q) for x, s, q in parts]
+    yield "oblate stacks", box, parts
+    box, parts, _ = tc.random_pairs(npairs=1000)
+    yield "random pairs", box, parts
+
+
+def results(lmp, box, parts, newton):
+    tc.build_system(box, parts, newton=newton, lmp=lmp, extra="processors * 1 1")
+    lmp.commands_string(COMPUTES)
+    lmp.command("run 0")
+    out = {}
+    for c in VECTORS:
+        out["v_" + c] = tc.vector(lmp, c)
+    for c in ARRAYS:
+        out["a_" + c] = tc.array(lmp, c)
+    return out
+
+
+def main():
+    args = ["-log", "none", "-screen", "none", "-nocite"]
+    probe = lammps(cmdargs=args)
+    nprocs = probe.extract_setting("world_size")
+    probe.close()
+    last = None
+    failures = []
+    for name, box, parts in configurations():
+        for newton in ("off", "on"):
+            par = lammps(cmdargs=args)
+            r_par = results(par, box, parts, newton)
+            par.close()
+            # -in is required with partitions; the library interface never reads it
+            ser = lammps(cmdargs=args + ["-partition", f"{nprocs}x1", "-plog", "none",
+                                         "-pscreen", "none", "-in", os.devnull])
+            r_ser = results(ser, box, parts, newton)
+            ser.close()
+            last = ser
+            for key in r_ser:
+                a, b = r_ser[key], r_par[key]
+                if a.shape != b.shape or not np.allclose(a, b, rtol=1e-11, atol=1e-12):
+                    failures.append(f"{name} newton {newton} {key}: serial {a} parallel {b}")
+            n_contacts = r_ser["v_ch"][8]
+            if n_contacts <= 0:
+                failures.append(f"{name}: no contacts at all")
+    last.finalize()    # MPI_Finalize: mpirun then sees a clean exit
+    rank = int(os.environ.get("OMPI_COMM_WORLD_RANK", os.environ.get("PMI_RANK", "0")))
+    if failures:
+        for f in failures:
+            print(f"[rank {rank}] FAIL {f}", flush=True)
+        sys.exit(1)
+    if rank == 0:
+        print(f"mpi_computes: 1 rank == {nprocs} ranks for all computes", flush=True)
+
+
+if __name__ == "__main__":
+    main()
