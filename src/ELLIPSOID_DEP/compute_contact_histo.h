@@ -7,34 +7,26 @@
 #ifndef LMP_COMPUTE_CONTACT_HISTO_H
 #define LMP_COMPUTE_CONTACT_HISTO_H
 
-#include "compute.h"
-
-#include <string>
+#include "compute_angle_histo.h"
 
 namespace LAMMPS_NS {
 
-class ComputeContactHisto : public Compute {
+class ComputeContactHisto : public ComputeAngleHisto {
  public:
   ComputeContactHisto(class LAMMPS *, int, char **);
-  ~ComputeContactHisto() override;
   void init() override;
-  void compute_vector() override;
-  void compute_array() override;
-  std::string get_thermo_colname(int) override;
 
   static constexpr int NVALUES = 9;
 
+ protected:
+  bool parse_keyword(const char *, const char *) override;
+  void prepare() override;
+  void accumulate(double zlo, double zhi, bool use_slab) override;
+  void finish_vector(const double *moments, double count, const double *extra) override;
+
  private:
   class PairGranularEllipsoid *pair;
-  int nbins;
-  bool have_zlo, have_zhi;
-  double zlo_user, zhi_user;
-  char *slab_id;                 // packing/ellipsoid compute giving zlo, zhi
-  class Compute *slab_compute;
-  int select_center;             // 0: contact point in slab, 1: the side's particle centre
-  double *hist, *hist_all;
-
-  void tally();
+  int select_center;    // 0: contact point in slab, 1: the side's particle centre
 };
 
 }    // namespace LAMMPS_NS

@@ -7,34 +7,25 @@
 #ifndef LMP_COMPUTE_ORIENT_HISTO_H
 #define LMP_COMPUTE_ORIENT_HISTO_H
 
-#include "compute.h"
-
-#include <string>
+#include "compute_angle_histo.h"
 
 namespace LAMMPS_NS {
 
-class ComputeOrientHisto : public Compute {
+class ComputeOrientHisto : public ComputeAngleHisto {
  public:
   ComputeOrientHisto(class LAMMPS *, int, char **);
-  ~ComputeOrientHisto() override;
   void init() override;
-  void compute_vector() override;
-  void compute_array() override;
-  std::string get_thermo_colname(int) override;
 
   static constexpr int NVALUES = 7;
 
- private:
-  int which_axis;                // 0 longest, 1 middle, 2 shortest semi-axis
-  int nbins;
-  bool fold;                     // theta folded into [0, pi/2] (each axis once)
-  bool have_zlo, have_zhi;
-  double zlo_user, zhi_user;
-  char *slab_id;
-  class Compute *slab_compute;
-  double *hist, *hist_all;
+ protected:
+  bool parse_keyword(const char *, const char *) override;
+  void accumulate(double zlo, double zhi, bool use_slab) override;
+  void finish_vector(const double *moments, double count, const double *extra) override;
 
-  void tally();
+ private:
+  int which_axis;    // 0 longest, 1 middle, 2 shortest semi-axis
+  bool fold;         // theta folded into [0, pi/2] (each axis once)
 };
 
 }    // namespace LAMMPS_NS

@@ -133,9 +133,7 @@ ComputePackingEllipsoid::~ComputePackingEllipsoid()
 
 void ComputePackingEllipsoid::init()
 {
-  pair = dynamic_cast<PairGranularEllipsoid *>(force->pair_match("granular/ellipsoid", 1));
-  if (!pair)
-    error->all(FLERR, "Compute packing/ellipsoid requires pair style granular/ellipsoid");
+  pair = PairGranularEllipsoid::find(lmp, "Compute packing/ellipsoid");
   pair->request_contacts();
   if (domain->triclinic)
     error->all(FLERR, "Compute packing/ellipsoid requires an orthogonal simulation box");

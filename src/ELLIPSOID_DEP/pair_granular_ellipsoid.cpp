@@ -49,6 +49,10 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
 
   single_extra = 10;
   svector = new double[single_extra];
+  // the counters, for "compute ID all pair granular/ellipsoid" (which sums them over ranks)
+  nextra = NUM_COUNTERS;
+  pvector = new double[nextra];
+  local_counters(pvector);
   for (double &c : counters_global) c = 0.0;
 
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
@@ -56,11 +60,23 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
       modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
 }
 
+/* ----------------------------------------------------------------------
+   the pair style in use, for the styles that read its contacts (who: "Compute xxx")
+------------------------------------------------------------------------- */
+
+PairGranularEllipsoid *PairGranularEllipsoid::find(LAMMPS *lmp, const char *who)
+{
+  auto *pair = dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
+  if (!pair) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
+  return pair;
+}
+
 /* ---------------------------------------------------------------------- */
 
 PairGranularEllipsoid::~PairGranularEllipsoid()
 {
   delete[] svector;
+  delete[] pvector;
   if (!fix_history)
     modify->delete_fix(HISTORY_DUMMY_ID);
   else
@@ -424,6 +440,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       }
     }
   }
+  local_counters(pvector);
 }
 
 /* ----------------------------------------------------------------------
@@ -475,13 +492,19 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
 
 /* ---------------------------------------------------------------------- */
 
+void PairGranularEllipsoid::local_counters(double *out) const
+{
+  const long long values[NUM_COUNTERS] = {
+      counters.pairs,         counters.plane_hits,       counters.wang_calls,
+      counters.contacts,      counters.iterations,       counters.corrections,
+      counters.not_converged, counters.bounding_rejects, counters.degenerate};
+  for (int k = 0; k < NUM_COUNTERS; k++) out[k] = static_cast<double>(values[k]);
+}
+
 void PairGranularEllipsoid::global_counters(double *out) const
 {
-  const double local[NUM_COUNTERS] = {
-      static_cast<double>(counters.pairs),        static_cast<double>(counters.plane_hits),
-      static_cast<double>(counters.wang_calls),   static_cast<double>(counters.contacts),
-      static_cast<double>(counters.iterations),   static_cast<double>(counters.corrections),
-      static_cast<double>(counters.not_converged), static_cast<double>(counters.bounding_rejects)};
+  double local[NUM_COUNTERS];
+  local_counters(local);
   MPI_Allreduce(local, out, NUM_COUNTERS, MPI_DOUBLE, MPI_SUM, world);
 }
 
@@ -504,12 +527,15 @@ void PairGranularEllipsoid::finish()
   utils::logmesg(lmp,
                  "granular/ellipsoid: {:.0f} pairs tested, {:.0f} bounding rejects, {:.0f} plane "
                  "hits, {:.0f} Wang tests, {:.0f} contacts, {:.2f} mean iterations, {:.0f} "
-                 "corrections, {:.0f} not converged\n",
-                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6]);
+                 "corrections, {:.0f} not converged, {:.0f} degenerate\n",
+                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6], c[8]);
   if (c[6] > 0.0)
     error->warning(FLERR, "granular/ellipsoid: {:.0f} contact evaluations did not converge "
                           "within {} iterations (used with their last iterate)",
                    c[6], pipeline.contact.max_iterations);
+  if (c[8] > 0.0)
+    error->warning(FLERR, "granular/ellipsoid: {:.0f} pair evaluations had degenerate input "
+                          "(non-finite positions or shapes) and gave no force", c[8]);
 }
 
 /* ---------------------------------------------------------------------- */

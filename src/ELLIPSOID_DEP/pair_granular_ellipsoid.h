@@ -44,6 +44,9 @@ class PairGranularEllipsoid : public Pair {
   void finish() override;
   double memory_usage() override;
 
+  // The pair style granular/ellipsoid in use; an error naming who (e.g. "Compute
+  // contact/histo") when there is none.
+  static PairGranularEllipsoid *find(class LAMMPS *lmp, const char *who);
   // Ask the pair to keep the list of contacts of each force evaluation (computes call this in
   // their init; the list costs nothing when nobody asked).
   void request_contacts() { record_contacts = true; }
@@ -52,9 +55,12 @@ class PairGranularEllipsoid : public Pair {
   bigint contacts_timestep() const { return contact_step; }
   // Geometry of atom i as the kernel sees it (for the computes and the pour's overlap check).
   EllipsoidDep::Ellipsoid ellipsoid_of(int i) const;
-  // Counters summed over all ranks since the run began.
+  // Counters since the pair was created: this rank's, and summed over all ranks.
+  void local_counters(double *out) const;
   void global_counters(double *out) const;
-  static constexpr int NUM_COUNTERS = 8;
+  // pairs, plane hits, Wang tests, contacts, iterations, corrections, not converged,
+  // bounding rejects, degenerate
+  static constexpr int NUM_COUNTERS = 9;
 
  protected:
   EllipsoidDep::PipelineSettings pipeline;

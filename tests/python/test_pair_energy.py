@@ -11,10 +11,12 @@ from conftest import new_lammps
 STEPS_PER_CONTACT = 50
 
 
-def collide(ratio, seed, dt, steps):
+def head_on_pair(ratio, seed, gap=0.05):
+    """Two triaxial ellipsoids (a/c = ratio, c = 0.5) with random orientations approaching
+    along x at relative speed 1, slightly off-centre so that they spin up."""
     rng = np.random.default_rng(seed)
     c = 0.5
-    semi = np.array([ratio * c, np.sqrt(ratio) * c, c])    # triaxial, a/c = ratio
+    semi = np.array([ratio * c, np.sqrt(ratio) * c, c])
     reach = semi.max()
     lmp = new_lammps()
     lmp.commands_string(f"""
@@ -25,16 +27,15 @@ def collide(ratio, seed, dt, steps):
         boundary f f f
         region box block -20 20 -20 20 -20 20
         create_box 1 box
-        create_atoms 1 single {-reach - 0.05} 0 0
-        create_atoms 1 single {reach + 0.05} {0.3 * c} 0
+        create_atoms 1 single {-reach - gap} 0 0
+        create_atoms 1 single {reach + gap} {0.3 * c} 0
         set type 1 mass 1.0
         set type 1 shape {2 * semi[0]} {2 * semi[1]} {2 * semi[2]}
         """)
     for tag in (1, 2):
         axis = rng.normal(size=3)
         lmp.command(f"set atom {tag} quat {axis[0]} {axis[1]} {axis[2]} {rng.uniform(0, 360)}")
-    lmp.commands_string(f"""
-        velocity all set 0 0 0
+    lmp.commands_string("""
         group left id 1
         group right id 2
         velocity left set 0.5 0 0
@@ -42,6 +43,13 @@ def collide(ratio, seed, dt, steps):
         pair_style granular/ellipsoid
         pair_coeff * * hertz 1.0e4 0.0 tangential none
         fix integrate all nve/asphere
+        """)
+    return lmp
+
+
+def collide(ratio, seed, dt, steps):
+    lmp = head_on_pair(ratio, seed)
+    lmp.commands_string(f"""
         compute rot all erotate/asphere
         compute tr all ke
         variable energy equal c_tr+c_rot
@@ -86,3 +94,25 @@ def test_elastic_collision_conserves_energy(ratio, tolerance, seed):
     assert 40 <= contact_steps <= 60
     assert rot > 1e-3 * e0, "no spin-up: the collision did not test the torques"
     assert abs(e1 - e0) / e0 < tolerance, f"relative energy change {(e1 - e0) / e0:.2e}"
+
+
+def test_counters_follow_the_pipeline():
+    """compute pair exposes the pair's counters: an approach passes through bounding rejects,
+    cached planes and Wang tests before the contact, and every evaluation converges."""
+    lmp = head_on_pair(2.5, 77, gap=1.0)
+    lmp.commands_string("""
+        compute counters all pair granular/ellipsoid
+        thermo_style custom step c_counters[*]
+        thermo 6000
+        timestep 5e-4
+        run 6000
+        """)
+    names = ["pairs", "plane_hits", "wang_calls", "contacts", "iterations", "corrections",
+             "not_converged", "bounding_rejects", "degenerate"]
+    c = {name: lmp.numpy.extract_compute("counters", 0, 1)[k] for k, name in enumerate(names)}
+    lmp.close()
+    assert c["bounding_rejects"] > 0 and c["plane_hits"] > 0 and c["wang_calls"] > 0, c
+    assert c["contacts"] > 10, c
+    assert c["plane_hits"] > c["wang_calls"], "cached planes should spare most Wang tests"
+    assert c["not_converged"] == 0 and c["degenerate"] == 0, c
+    assert c["pairs"] == c["bounding_rejects"] + c["plane_hits"] + c["wang_calls"], c
