@@ -21,10 +21,11 @@ inline bool finite3(const Vec3 &v)
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+// make_ellipsoid decides validity once per body; a centre moved afterwards (periodic
+// images) is checked again because it is cheap
 inline bool valid(const Ellipsoid &e)
 {
-  return finite3(e.center) && finite3(e.semi_axes) && e.semi_axes.minCoeff() > 0.0 &&
-      e.form.allFinite() && e.inverse_form.allFinite();
+  return e.finite && finite3(e.center);
 }
 
 // Support half-width sqrt(n^T M n) (n need not be unit: degree-1 homogeneous).
@@ -422,6 +423,8 @@ Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &s
   e.bounding_radius = semi_axes.maxCoeff();
   const double lo = semi_axes.minCoeff();
   e.sphere = (e.bounding_radius - lo) <= 1e-14 * e.bounding_radius;
+  e.finite = finite3(center) && finite3(semi_axes) && lo > 0.0 && e.form.allFinite() &&
+      e.inverse_form.allFinite();
   return e;
 }
 
@@ -696,6 +699,7 @@ void PipelineCounters::add(const PipelineCounters &o)
   corrections += o.corrections;
   not_converged += o.not_converged;
   degenerate += o.degenerate;
+  continued += o.continued;
 }
 
 namespace {
@@ -761,7 +765,12 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
     g.status = Status::Degenerate;
     return g;
   }
-  if (settings.use_wang) {
+  // A pair in contact at the previous evaluation goes straight to the iteration, warm-started
+  // from its own last normal: the sign of min d(n) decides separation exactly, and the
+  // continuing contact keeps its basin. The Wang test screens pairs that newly come close.
+  const bool continuing_contact = state == 2 && have_n;
+  if (continuing_contact) ++counters.continued;
+  if (settings.use_wang && !continuing_contact) {
     ++counters.wang_calls;
     const Status ws = wang_classify(a, b, settings.contact);
     if (ws == Status::Degenerate) {

@@ -38,6 +38,7 @@ struct Ellipsoid {
   Mat3 inverse_form;  // M = R diag(a^2) R^T  (support function)
   double bounding_radius;  // largest semi-axis
   bool sphere;             // all semi-axes equal to round-off: closed-form path
+  bool finite = false;     // every entry finite and semi-axes > 0 (checked once, here)
 
   // the paper's 4x4 homogeneous matrix: X^T H X = 0 on the surface, X = (x,1)
   Mat4 homogeneous() const;
@@ -149,6 +150,7 @@ struct PipelineCounters {
   long long corrections = 0;      // normal-correcting step applied
   long long not_converged = 0;    // iteration cap reached (contact still used, flagged)
   long long degenerate = 0;
+  long long continued = 0;        // contacts of the previous step re-evaluated without Wang
   void add(const PipelineCounters &o);
 };
 

@@ -162,6 +162,11 @@ FixPourEllipsoid::FixPourEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix pour/ellipsoid region {} is empty", idregion);
 
   setup_size_statistics();
+  // particles are inserted with their whole bounding sphere inside the region's z range
+  if (zhi - zlo < 2.0 * bounding_max)
+    error->all(FLERR, "Fix pour/ellipsoid region {} is {} high: too low for particles whose "
+                      "largest semi-axis is {} (their bounding spheres must fit in z)",
+               idregion, zhi - zlo, bounding_max);
 
   // insertions per batch from the region volume and the mean particle volume
   const double volume = region_style == 1 ? (xhi - xlo) * (yhi - ylo) * (zhi - zlo)
@@ -388,6 +393,18 @@ void FixPourEllipsoid::setup_size_statistics()
   const double eta_max = eta * (1.0 + delta_eta), zeta_max = zeta * (1.0 + delta_zeta);
   // a = r eta^(2/3) zeta^(1/3) grows with r, eta and zeta
   bounding_max = rmax * std::cbrt(eta_max * eta_max * zeta_max);
+
+  // masses and principal moments must be normal, finite numbers: sizes so small (or so
+  // large) that rho 4/3 pi r^3 or m c^2 under- or overflows would give zero or infinite
+  // masses and NaN velocities under fix nve/asphere
+  const double c_min = rmin / std::cbrt(eta_max * zeta_max * zeta_max);
+  const double mass_min = density * MY_4PI3 * rmin * rmin * rmin;
+  const double mass_max = density * MY_4PI3 * rmax * rmax * rmax;
+  if (!std::isnormal(mass_min) || !std::isnormal(mass_min * c_min * c_min) ||
+      !std::isnormal(mean_volume) || !std::isfinite(mass_max * bounding_max * bounding_max))
+    error->all(FLERR, "Fix pour/ellipsoid size and density give masses or moments of inertia "
+                      "that are not representable (rmin {} rmax {} density {}); use other units",
+               rmin, rmax, density);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -673,10 +690,13 @@ void FixPourEllipsoid::pre_exchange()
 
   for (int k = 0; k < nnew; k++) {
     const double rn = random->uniform();
-    const double h = hi_current - rn * rn * (hi_current - lo_current);
     const double r = sample_size();
     double axes[3], quat[4], coord[3];
     sample_shape(r, axes);
+    // the whole bounding sphere stays inside the region in z, so that no particle is
+    // inserted through a floor (or wall) at the region's bottom
+    const double bound = MAX(axes[0], MAX(axes[1], axes[2]));
+    const double h = (hi_current - bound) - rn * rn * (hi_current - lo_current - 2.0 * bound);
 
     bool success = false;
     Ellipsoid cand;
@@ -751,6 +771,10 @@ void FixPourEllipsoid::pre_exchange()
     if (atom->natoms < 0) error->all(FLERR, "Too many total atoms");
     if (maxtag_all >= MAXTAGINT) error->all(FLERR, "New atom IDs exceed maximum allowed ID");
   }
+  // the global ellipsoid count (the 'ellipsoids' header of write_data), as the set command
+  // keeps it; without it read_data rejects the data file of a pour
+  bigint nlocal_bonus = avec->nlocal_bonus;
+  MPI_Allreduce(&nlocal_bonus, &atom->nellipsoids, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (atom->map_style != Atom::MAP_NONE) {
     atom->map_init();
     atom->map_set();

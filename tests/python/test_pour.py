@@ -254,7 +254,8 @@ def test_restart_continues_pour(tmp_path):
     ("10 1 5 region ins shape 1 0.5", r"zeta = b/c must be >= 1"),
     ("10 1 5 region ins shape 1.1 1 dshape 0.5 0", r"eta \(1 - delta_eta\)"),
     ("10 1 5 region ins bogus 3", r"Unknown fix pour/ellipsoid keyword 'bogus'"),
-    ("10 1 5 region ins size 1 1", r"region ins is too small"),
+    ("10 1 5 region ins size 0.2 0.2 vol 0.01 10", r"region ins is too small"),
+    ("10 1 5 region ins size 1 1", r"region ins is 0.5 high: too low for particles"),
     ("10 1 5 region xcyl", r"must be a z-axis cylinder"),
 ])
 def test_errors(tmp_path, args, pattern):
