@@ -1,0 +1,182 @@
+"""Helpers for test_robustness.py and test_restart_pour.py: run a scene with a log file,
+sample per-atom and per-contact data, and reduce them to the robustness checks of issue 9
+(finite state, no lost atom, bounded kinetic energy, largest overlap, solver counters).
+
+Everything is read back from LAMMPS output files written at full precision, so the checks
+do not depend on the plugin's own kernel.
+"""
+import math
+import os
+import re
+
+import numpy as np
+
+import ed_helpers_pour as h
+
+COUNTER_LINE = re.compile(
+    r"granular/ellipsoid: (\d+) pairs tested, (\d+) bounding rejects, (\d+) plane hits, "
+    r"(\d+) Wang tests, (\d+) contacts, ([0-9.]+) mean iterations, (\d+) corrections, "
+    r"(\d+) not converged")
+
+ATOM_COLS = ("id x y z vx vy vz fx fy fz tqx tqy tqz quatw quati quatj quatk "
+             "shapex shapey shapez").split()
+
+
+def counters(log):
+    """The last counter line the pair printed (cumulative over the runs of the instance)."""
+    found = COUNTER_LINE.findall(log)
+    assert found, "the pair printed no counter line"
+    c = found[-1]
+    return {"pairs": int(c[0]), "bounding": int(c[1]), "plane_hits": int(c[2]),
+            "wang": int(c[3]), "contacts": int(c[4]), "mean_iterations": float(c[5]),
+            "corrections": int(c[6]), "not_converged": int(c[7])}
+
+
+def read_dump_frames(path):
+    """All frames of a LAMMPS text dump: list of (timestep, 2d array). nan/inf parse."""
+    frames = []
+    if not os.path.exists(path):
+        return frames
+    with open(path) as f:
+        lines = f.read().splitlines()
+    k = 0
+    while k < len(lines):
+        if lines[k].startswith("ITEM: TIMESTEP"):
+            step = int(lines[k + 1])
+            n = int(lines[k + 3])
+            start = next(i for i in range(k, len(lines))
+                         if lines[i].startswith(("ITEM: ATOMS", "ITEM: ENTRIES"))) + 1
+            rows = [l.split() for l in lines[start:start + n]]
+            arr = np.array(rows, dtype=float).reshape(n, -1) if n else np.zeros((0, 0))
+            frames.append((step, arr))
+            k = start + n
+        else:
+            k += 1
+    return frames
+
+
+def instrument(lmp, work, every, wall_z=None):
+    """Dumps every `every` steps: per-atom state (full precision) and per-contact overlaps
+    with the two atom ids; thermo with translational and rotational kinetic energy."""
+    lmp.command("compute rb_ke all ke")
+    lmp.command("compute rb_er all erotate/asphere")
+    lmp.command("compute rb_sh all property/atom shapex shapey shapez quatw quati quatj quatk")
+    lmp.command("compute rb_pl all pair/local p1")
+    lmp.command("compute rb_pa all property/local patom1 patom2")
+    cols = "id x y z vx vy vz fx fy fz tqx tqy tqz " + \
+        " ".join(f"c_rb_sh[{k}]" for k in (4, 5, 6, 7, 1, 2, 3))
+    lmp.command(f"dump rb_a all custom {every} {work}/atoms.dump {cols}")
+    lmp.command("dump_modify rb_a sort id format float %.17g")
+    lmp.command(f"dump rb_c all local {every} {work}/contacts.dump c_rb_pa[1] c_rb_pa[2] "
+                "c_rb_pl")
+    lmp.command("dump_modify rb_c format float %.17g")
+    lmp.command("thermo_style custom step atoms c_rb_ke c_rb_er")
+    lmp.command("thermo_modify format float %.10g lost error")
+    lmp.command(f"thermo {every}")
+
+
+def analyse(lmp, work, wall_z=None):
+    """Reduce the dumps and the log to the robustness quantities."""
+    lmp.command("undump rb_a")   # flush and close the dumps
+    lmp.command("undump rb_c")
+    log = h.read_log(lmp)
+    frames = read_dump_frames(os.path.join(work, "atoms.dump"))
+    contacts = read_dump_frames(os.path.join(work, "contacts.dump"))
+    finite = all(np.isfinite(a).all() for _, a in frames)
+    thermo = []
+    for m in re.finditer(r"^\s*(\d+)\s+(\d+)\s+(\S+)\s+(\S+)\s*$", log, re.M):
+        thermo.append((int(m.group(1)), int(m.group(2)), float(m.group(3)),
+                       float(m.group(4))))
+    thermo = np.array(thermo)
+    finite = finite and np.isfinite(thermo[:, 2:]).all()
+    # smallest semi-axis per id (shapes do not change)
+    last = frames[-1][1]
+    cmin = dict(zip(last[:, 0].astype(int), 0.5 * last[:, 17:20].min(axis=1)))
+    worst_pair = 0.0
+    for _, c in contacts:
+        if c.size == 0:
+            continue
+        c = c[c[:, 2] > 0]
+        if len(c) == 0:
+            continue
+        ref = np.array([min(cmin[int(i)], cmin[int(j)]) for i, j in c[:, :2]])
+        worst_pair = max(worst_pair, float((c[:, 2] / ref).max()))
+    worst_wall = 0.0
+    if wall_z is not None:
+        for _, a in frames:
+            for row in a:
+                low = h.lowest_z(row[13:17], 0.5 * row[17:20], row[3])
+                worst_wall = max(worst_wall, (wall_z - low) / (0.5 * row[17:20].min()))
+    return {
+        "log": log, "frames": frames, "finite": bool(finite), "thermo": thermo,
+        "natoms": lmp.get_natoms(), "counters": counters(log),
+        "ke_max": float((thermo[:, 2] + thermo[:, 3]).max()),
+        "ke_last": float(thermo[-1, 2] + thermo[-1, 3]),
+        "overlap_pair": worst_pair, "overlap_wall": worst_wall,
+    }
+
+
+def assert_robust(res, natoms, ke_bound, overlap_frac, min_contacts=1, label=""):
+    """The five checks of the issue, with a message naming the case and the numbers."""
+    c = res["counters"]
+    msg = (f"{label}: natoms {res['natoms']}, ke_max {res['ke_max']:.4g} (bound "
+           f"{ke_bound:.4g}), overlap pair {res['overlap_pair']:.4g} wall "
+           f"{res['overlap_wall']:.4g} (bound {overlap_frac}), counters {c}")
+    assert res["finite"], "non-finite value: " + msg
+    assert res["natoms"] == natoms, "lost atoms: " + msg
+    assert res["ke_max"] <= ke_bound, "kinetic energy: " + msg
+    assert max(res["overlap_pair"], res["overlap_wall"]) < overlap_frac, "overlap: " + msg
+    assert c["contacts"] >= min_contacts, "no contact exercised: " + msg
+    assert c["not_converged"] <= 1e-6 * c["contacts"], "not converged: " + msg
+
+
+def quat_axis_angle(axis, degrees):
+    axis = np.asarray(axis, float)
+    axis = axis / np.linalg.norm(axis)
+    half = math.radians(degrees) / 2
+    return np.concatenate([[math.cos(half)], math.sin(half) * axis])
+
+
+def support_half_extent(q, semi, n):
+    """h(n) - n.c: distance from the centre to the supporting plane with normal n."""
+    m = h.support_matrix(q, semi)
+    n = np.asarray(n, float)
+    return math.sqrt(n @ m @ n)
+
+
+def gap_along(q1, s1, q2, s2, n):
+    """Centre distance along unit n at which the two bodies' supporting planes of normal n
+    coincide (touching, when n is the common normal)."""
+    return support_half_extent(q1, s1, n) + support_half_extent(q2, s2, n)
+
+
+def _fibonacci(n):
+    k = np.arange(n) + 0.5
+    z = 1 - 2 * k / n
+    phi = math.pi * (1 + 5 ** 0.5) * k
+    r = np.sqrt(1 - z * z)
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+def touch_distance(q1, s1, q2, s2, u):
+    """Centre distance along unit u at which the bodies (fixed orientations) first touch:
+    the radial function of the Minkowski sum A + (-B), rho(u) = min over n.u > 0 of
+    (h_A(n) + h_B(n)) / n.u, from 20000 directions refined by Nelder-Mead."""
+    from scipy import optimize
+    ma, mb = h.support_matrix(q1, s1), h.support_matrix(q2, s2)
+    u = np.asarray(u, float) / np.linalg.norm(u)
+
+    def ratio(n):
+        n = n / np.linalg.norm(n)
+        nu = n @ u
+        if nu <= 1e-12:
+            return 1e300
+        return (math.sqrt(n @ ma @ n) + math.sqrt(n @ mb @ n)) / nu
+
+    dirs = _fibonacci(20000)
+    dirs = dirs[dirs @ u > 1e-6]
+    vals = (np.sqrt(np.einsum("ij,jk,ik->i", dirs, ma, dirs)) +
+            np.sqrt(np.einsum("ij,jk,ik->i", dirs, mb, dirs))) / (dirs @ u)
+    best = dirs[np.argsort(vals)[:4]]
+    return min(optimize.minimize(ratio, g, method="Nelder-Mead",
+                                 options={"xatol": 1e-12, "fatol": 1e-14}).fun for g in best)
