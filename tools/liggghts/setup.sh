@@ -107,18 +107,30 @@ sync_adapter() {
 build() {
   local total log="$BUILD/build.log"
   total=$(ls "$SRC"/*.cpp | wc -l)
-  say "building LIGGGHTS $VERSION + surface ellipsoid ($total sources, $JOBS parallel; a full build takes ~4-8 min on 2 cores; log $log)"
+  # percentages for a full build; an incremental one (objects exist) just counts its files
+  local full=1
+  compgen -G "$SRC/Obj_ellipsoid_dep/*.o" >/dev/null && full=0
+  say "building LIGGGHTS $VERSION + surface ellipsoid ($total sources, $JOBS parallel; a full build is ~8 min of CPU, 5-16 min on a shared 2-core machine; log $log)"
   local ccache=""
   command -v ccache >/dev/null && ccache="ccache"
   local start=$SECONDS
   set +o pipefail
-  (cd "$SRC" && make -j"$JOBS" ellipsoid_dep CCACHE="$ccache" 2>&1) | tee "$log" |
-    awk -v total="$total" '
-      /^CXX /{n++; printf "  [%3d%%] %s\n", int(100*n/total), $2; fflush(); next}
-      /^LINK/{print "  linking"; fflush(); next}
-      /error|Error/{print; fflush()}' >&2
+  # (a bash loop, not awk: Debian's mawk reads a pipe in blocks, so progress would come late)
+  (cd "$SRC" && make -j"$JOBS" ellipsoid_dep CCACHE="$ccache" 2>&1) | tee "$log" | {
+    n=0
+    while IFS= read -r line; do
+      case "$line" in
+        "CXX "*) n=$((n + 1))
+          if [ "$full" = 1 ]; then printf '  [%3d%%] %s\n' $((100 * n / total)) "${line#CXX }"
+          else printf '  [%d] %s\n' "$n" "${line#CXX }"; fi ;;
+        LINK*) echo "  linking" ;;
+        *error*|*Error*) echo "$line" ;;
+      esac
+    done; } >&2
+  local rc=${PIPESTATUS[0]}
   set -o pipefail
-  [ -x "$SRC/lmp_ellipsoid_dep" ] || die "LIGGGHTS build failed (log: $log)"
+  [ "$rc" = 0 ] && [ -x "$SRC/lmp_ellipsoid_dep" ] ||
+    die "LIGGGHTS build failed (make exit $rc; log: $log)"
   if ! cmp -s "$SRC/lmp_ellipsoid_dep" "$EXE"; then cp "$SRC/lmp_ellipsoid_dep" "$EXE"; fi
   ln -sfn "$BUILD" "$CACHE/liggghts-current"
   say "built $EXE in $((SECONDS - start)) s"

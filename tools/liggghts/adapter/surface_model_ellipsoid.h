@@ -49,6 +49,7 @@ SURFACE_MODEL(SURFACE_ELLIPSOID,ellipsoid,7)
 #include "math_extra_liggghts_nonspherical.h"
 #include "ellipsoid_dep_bridge.h"
 #include <cmath>
+#include <cstdio>
 
 namespace LIGGGHTS {
 namespace ContactModels
@@ -64,12 +65,21 @@ namespace ContactModels
     bool planes_setting;
     bool wang_setting;
 
-    // blockiness 2 2 (LIGGGHTS accepts blockiness >= 2); tolerance as LIGGGHTS's isEllipsoid
+    // LIGGGHTS's Error::one writes to an unflushed screen only and aborts, so the message is
+    // lost when the screen is a pipe or a file: write it to screen and log, flushed, first
+    void fail(const char *message)
+    {
+      if (screen) { fprintf(screen, "ERROR: %s\n", message); fflush(screen); }
+      if (logfile) { fprintf(logfile, "ERROR: %s\n", message); fflush(logfile); }
+      error->one(FLERR, message);
+    }
+
+    // blockiness 2 2 (LIGGGHTS accepts blockiness >= 2)
     inline void check_ellipsoid(int i)
     {
       const double *blk = atom->blockiness[i];
       if (std::fabs(blk[0] - 2.0) > 1e-10 || std::fabs(blk[1] - 2.0) > 1e-10)
-        error->one(FLERR, "surface ellipsoid needs superquadric particles with blockiness 2 2");
+        fail("surface ellipsoid needs superquadric particles with blockiness 2 2");
     }
 
   public:
@@ -136,8 +146,8 @@ namespace ContactModels
           atom->x[i], atom->quaternion[i], atom->shape[i],
           atom->x[j], atom->quaternion[j], atom->shape[j], kernel, cache, c);
       if (c.status == 4)
-        error->one(FLERR, "surface ellipsoid: degenerate particle data (non-finite position, "
-                          "quaternion or shape)");
+        fail("surface ellipsoid: degenerate particle data (non-finite position, quaternion or "
+             "shape)");
 
       // keep the history (cached plane or normal) across re-neighbouring while it holds something
       if (sidata.contact_flags) {
