@@ -16,7 +16,7 @@ constexpr int kPairs = 1024;
 
 struct Pair {
   Ellipsoid a, b;
-  Vec3 n;   // converged contact normal (or separating direction)
+  Vec3 n;    // converged contact normal (or separating direction)
 };
 
 Mat3 rotation(std::mt19937_64 &rng)
@@ -41,7 +41,8 @@ std::vector<Pair> make_pairs(double delta_rel, bool spheres, unsigned seed)
     p.a = make_ellipsoid(Vec3(g(rng), g(rng), g(rng)), rotation(rng), axa);
     p.n = Vec3(g(rng), g(rng), g(rng)).normalized();
     const Ellipsoid b0 = make_ellipsoid(Vec3::Zero(), rotation(rng), axb);
-    const Vec3 pa = p.a.center + p.a.inverse_form * p.n / std::sqrt(p.n.dot(p.a.inverse_form * p.n));
+    const Vec3 pa =
+        p.a.center + p.a.inverse_form * p.n / std::sqrt(p.n.dot(p.a.inverse_form * p.n));
     const Vec3 cb = pa - delta_rel * std::min(sa, sb) * p.n +
         b0.inverse_form * p.n / std::sqrt(p.n.dot(b0.inverse_form * p.n));
     p.b = make_ellipsoid(cb, b0.rotation, axb);
@@ -61,20 +62,28 @@ const std::vector<Pair> &disjoint()
   return v;
 }
 
+// Times f(k) for k cycling over the kPairs prepared inputs.
+template <class F> void cycle(benchmark::State &state, F &&f)
+{
+  int k = 0;
+  for (auto _ : state) {
+    f(k);
+    k = (k + 1) & (kPairs - 1);
+  }
+}
+
 void BM_BoundingReject(benchmark::State &state)
 {
   auto pairs = disjoint();
-  for (auto &p : pairs)   // far apart
+  for (auto &p : pairs)    // far apart
     p.b = make_ellipsoid(p.a.center + 10.0 * p.n, p.b.rotation, p.b.semi_axes);
   std::vector<double> cache(PAIR_CACHE_SIZE * kPairs, 0.0);
   PipelineSettings ps;
   PipelineCounters cnt;
-  int i = 0;
-  for (auto _ : state) {
-    auto g = evaluate_pair(pairs[i].a, pairs[i].b, ps, &cache[PAIR_CACHE_SIZE * i], cnt);
+  cycle(state, [&](int k) {
+    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PAIR_CACHE_SIZE * k], cnt);
     benchmark::DoNotOptimize(g);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_BoundingReject);
 
@@ -83,12 +92,10 @@ void BM_PlaneSeparates(benchmark::State &state)
   const auto &pairs = disjoint();
   std::vector<SeparatingPlane> planes(kPairs);
   for (int i = 0; i < kPairs; ++i) build_separating_plane(pairs[i].a, pairs[i].b, planes[i]);
-  int i = 0;
-  for (auto _ : state) {
-    bool s = plane_separates(planes[i], pairs[i].a, pairs[i].b);
+  cycle(state, [&](int k) {
+    bool s = plane_separates(planes[k], pairs[k].a, pairs[k].b);
     benchmark::DoNotOptimize(s);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_PlaneSeparates);
 
@@ -101,14 +108,11 @@ void BM_PipelineCachedPlane(benchmark::State &state)
   PipelineCounters cnt;
   for (int i = 0; i < kPairs; ++i)
     evaluate_pair(pairs[i].a, pairs[i].b, ps, &cache[PAIR_CACHE_SIZE * i], cnt);
-  int i = 0;
-  for (auto _ : state) {
-    auto g = evaluate_pair(pairs[i].a, pairs[i].b, ps, &cache[PAIR_CACHE_SIZE * i], cnt);
+  cycle(state, [&](int k) {
+    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PAIR_CACHE_SIZE * k], cnt);
     benchmark::DoNotOptimize(g);
-    i = (i + 1) & (kPairs - 1);
-  }
-  state.counters["hit_fraction"] =
-      double(cnt.plane_hits) / double(cnt.pairs - kPairs);
+  });
+  state.counters["hit_fraction"] = double(cnt.plane_hits) / double(cnt.pairs - kPairs);
 }
 BENCHMARK(BM_PipelineCachedPlane);
 
@@ -116,12 +120,10 @@ void BM_WangDecision(benchmark::State &state)
 {
   const auto &pairs = overlapping();
   ContactSettings st;
-  int i = 0;
-  for (auto _ : state) {
-    auto s = wang_classify(pairs[i].a, pairs[i].b, st);
+  cycle(state, [&](int k) {
+    auto s = wang_classify(pairs[k].a, pairs[k].b, st);
     benchmark::DoNotOptimize(s);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_WangDecision);
 
@@ -129,26 +131,22 @@ void BM_WangDecisionDisjoint(benchmark::State &state)
 {
   const auto &pairs = disjoint();
   ContactSettings st;
-  int i = 0;
-  for (auto _ : state) {
-    auto s = wang_classify(pairs[i].a, pairs[i].b, st);
+  cycle(state, [&](int k) {
+    auto s = wang_classify(pairs[k].a, pairs[k].b, st);
     benchmark::DoNotOptimize(s);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_WangDecisionDisjoint);
 
 void BM_PlaneConstruction(benchmark::State &state)
 {
   const auto &pairs = disjoint();
-  int i = 0;
-  for (auto _ : state) {
+  cycle(state, [&](int k) {
     SeparatingPlane pl;
-    bool ok = build_separating_plane(pairs[i].a, pairs[i].b, pl);
+    bool ok = build_separating_plane(pairs[k].a, pairs[k].b, pl);
     benchmark::DoNotOptimize(ok);
     benchmark::DoNotOptimize(pl);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_PlaneConstruction);
 
@@ -162,32 +160,45 @@ void BM_WarmContact(benchmark::State &state)
   for (int i = 0; i < kPairs; ++i)
     warm[i] = (pairs[i].n + 1e-4 * Vec3(g(rng), g(rng), g(rng))).normalized();
   ContactSettings st;
-  int i = 0;
   long long iters = 0, n = 0;
-  for (auto _ : state) {
-    auto c = ellipsoid_contact(pairs[i].a, pairs[i].b, st, &warm[i]);
+  cycle(state, [&](int k) {
+    auto c = ellipsoid_contact(pairs[k].a, pairs[k].b, st, &warm[k]);
     benchmark::DoNotOptimize(c);
     iters += c.iterations;
     ++n;
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
   state.counters["iterations"] = double(iters) / double(n);
 }
 BENCHMARK(BM_WarmContact);
+
+// a contact of the previous step through the whole pipeline (no Wang test: warm iteration)
+void BM_PipelineContinuingContact(benchmark::State &state)
+{
+  const auto &pairs = overlapping();
+  std::vector<double> cache(PAIR_CACHE_SIZE * kPairs, 0.0);
+  PipelineSettings ps;
+  PipelineCounters cnt;
+  for (int i = 0; i < kPairs; ++i)
+    evaluate_pair(pairs[i].a, pairs[i].b, ps, &cache[PAIR_CACHE_SIZE * i], cnt);
+  cycle(state, [&](int k) {
+    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PAIR_CACHE_SIZE * k], cnt);
+    benchmark::DoNotOptimize(g);
+  });
+  state.counters["continued_fraction"] = double(cnt.continued) / double(cnt.pairs - kPairs);
+}
+BENCHMARK(BM_PipelineContinuingContact);
 
 void BM_ColdContact(benchmark::State &state)
 {
   const auto &pairs = overlapping();
   ContactSettings st;
-  int i = 0;
   long long iters = 0, n = 0;
-  for (auto _ : state) {
-    auto c = ellipsoid_contact(pairs[i].a, pairs[i].b, st);
+  cycle(state, [&](int k) {
+    auto c = ellipsoid_contact(pairs[k].a, pairs[k].b, st);
     benchmark::DoNotOptimize(c);
     iters += c.iterations;
     ++n;
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
   state.counters["iterations"] = double(iters) / double(n);
 }
 BENCHMARK(BM_ColdContact);
@@ -198,12 +209,10 @@ void BM_ColdContactFastMode(benchmark::State &state)
   const auto &pairs = overlapping();
   ContactSettings st;
   st.correction_angle = 0.1;
-  int i = 0;
-  for (auto _ : state) {
-    auto c = ellipsoid_contact(pairs[i].a, pairs[i].b, st);
+  cycle(state, [&](int k) {
+    auto c = ellipsoid_contact(pairs[k].a, pairs[k].b, st);
     benchmark::DoNotOptimize(c);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_ColdContactFastMode);
 
@@ -211,12 +220,10 @@ void BM_SpherePath(benchmark::State &state)
 {
   static const auto pairs = make_pairs(1e-3, true, 3);
   ContactSettings st;
-  int i = 0;
-  for (auto _ : state) {
-    auto c = ellipsoid_contact(pairs[i].a, pairs[i].b, st);
+  cycle(state, [&](int k) {
+    auto c = ellipsoid_contact(pairs[k].a, pairs[k].b, st);
     benchmark::DoNotOptimize(c);
-    i = (i + 1) & (kPairs - 1);
-  }
+  });
 }
 BENCHMARK(BM_SpherePath);
 
