@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Run the default ELLIPSOID_DEP deposit (examples/deposit/in.deposit) and post-process it.
 
-    ./ellipsoid-dep run [--N 400] [--np 2] [--out DIR] [--eta 1.4 --zeta 1.8 --dr 0.6]
+    ./ellipsoid-dep run [--N 1000] [--np 2] [--out DIR] [--eta 1.4 --zeta 1.8 --dr 0.6]
                         [--seed S] [--ketol 1e-4] [--no-image] [--input FILE] [--quiet]
 
 Runs `mpirun -np NP $LAMMPS_BUILD/lmp -in in.deposit -var ...` in the run folder
@@ -183,7 +183,7 @@ def plot_histograms(out, title):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--np", type=int, default=int(os.environ.get("NP", 2)), help="MPI ranks (default 2)")
-    ap.add_argument("--N", type=int, default=400, help="number of particles (default 400)")
+    ap.add_argument("--N", type=int, default=1000, help="number of particles (default 1000)")
     ap.add_argument("--out", default=None, help="run folder (default runs/deposit-<timestamp>/)")
     ap.add_argument("--eta", type=float, default=1.4)
     ap.add_argument("--zeta", type=float, default=1.8)
