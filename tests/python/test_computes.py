@@ -488,7 +488,6 @@ def test_oblate_stacks_peak_vertical():
 
 def test_orient_known_directions():
     """every long axis along z gives S = 1; random orientations give S ~ 0 and flat P"""
-    rng = np.random.default_rng(4)
     box, parts = lattice(n=(6, 6, 6), seed=4)
     lmp = build_system(box, parts)
     lmp.commands_string("""

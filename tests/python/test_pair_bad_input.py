@@ -1,4 +1,6 @@
 """Bad input to pair_style granular/ellipsoid: a LAMMPS ERROR naming the problem, no crash."""
+import re
+
 import pytest
 
 from conftest import new_lammps
@@ -19,9 +21,8 @@ set type 1 shape 1.2 1.0 0.8
 def expect_error(commands, message, setup=SETUP):
     lmp = new_lammps()
     try:
-        with pytest.raises(Exception) as caught:
+        with pytest.raises(Exception, match=re.escape(message)):
             lmp.commands_string(setup + commands)
-        assert message in str(caught.value), str(caught.value)
     finally:
         lmp.close()
 

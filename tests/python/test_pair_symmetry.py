@@ -1,6 +1,5 @@
 """The same physics whatever the atom order, and under atom_style ellipsoid superellipsoid."""
 import numpy as np
-import pytest
 
 from conftest import new_lammps
 

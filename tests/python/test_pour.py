@@ -139,8 +139,8 @@ def test_no_insertion_overlaps(tmp_path):
     for c in base_commands(box=(0, 0.4, 0, 0.4, 0, 1)):
         lmp.command(c)
     lmp.command("region ins block 0 0.4 0 0.4 0.6 1.0")
-    lmp.command(f"fix p all pour/ellipsoid 400 1 777 region ins size 0.02 0.04 "
-                f"shape 2.0 1.5 vol 0.3 200 every 1000")
+    lmp.command("fix p all pour/ellipsoid 400 1 777 region ins size 0.02 0.04 "
+                "shape 2.0 1.5 vol 0.3 200 every 1000")
     lmp.command("run 1")
     snap = h.snapshot(lmp, tmp_path)
     rejected = lmp.extract_fix("p", 0, 1, 2)
@@ -264,10 +264,9 @@ def test_errors(tmp_path, args, pattern):
         lmp.command(c)
     lmp.command("region ins block 0 1 0 1 0.5 1")
     lmp.command("region xcyl cylinder x 0.5 0.5 0.3 0.1 0.9")
-    with pytest.raises(Exception) as err:
+    with pytest.raises(Exception, match=pattern):
         lmp.command(f"fix p all pour/ellipsoid {args}")
     lmp.close()
-    assert re.search(pattern, str(err.value)), str(err.value)
 
 
 def test_error_atom_style(tmp_path):
@@ -275,10 +274,9 @@ def test_error_atom_style(tmp_path):
     lmp.command("atom_style sphere")
     lmp.command("region box block 0 1 0 1 0 1")
     lmp.command("create_box 1 box")
-    with pytest.raises(Exception) as err:
+    with pytest.raises(Exception, match="requires atom_style ellipsoid"):
         lmp.command("fix p all pour/ellipsoid 10 1 5 region box")
     lmp.close()
-    assert "requires atom_style ellipsoid" in str(err.value)
 
 
 def test_superellipsoid_variant(tmp_path):

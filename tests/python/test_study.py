@@ -8,7 +8,6 @@ import struct
 import subprocess
 import sys
 
-import pytest
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
