@@ -32,10 +32,10 @@ static constexpr int NMOMENT = 7;
 ComputeAngleHisto::ComputeAngleHisto(LAMMPS *lmp, int narg, char **arg, const char *name_in,
                                      int nvalues_in, const char *const *colnames_in,
                                      int nextra_in) :
-    Compute(lmp, narg, arg), name(name_in), nvalues(nvalues_in), colnames(colnames_in),
-    nextra(nextra_in), nbins(18), theta_max(MY_PI), have_zlo(false), have_zhi(false),
-    zlo_user(0.0), zhi_user(0.0), slab_id(nullptr), slab_compute(nullptr), hist(nullptr),
-    hist_all(nullptr)
+    Compute(lmp, narg, arg),
+    name(name_in), nvalues(nvalues_in), colnames(colnames_in), nextra(nextra_in), nbins(18),
+    theta_max(MY_PI), have_zlo(false), have_zhi(false), zlo_user(0.0), zhi_user(0.0),
+    slab_id(nullptr), slab_compute(nullptr), hist(nullptr), hist_all(nullptr)
 {
   if (!atom->ellipsoid_flag) error->all(FLERR, "Compute {} requires atom style ellipsoid", name);
 

@@ -35,8 +35,8 @@ using namespace LAMMPS_NS;
 using MathConst::MY_PI;
 
 namespace {
-const char *const COLNAMES[ComputeOrientHisto::NVALUES] = {"S", "nx", "ny", "nz", "Qzz",
-                                                           "cos2", "N"};
+const char *const COLNAMES[ComputeOrientHisto::NVALUES] = {"S",   "nx",   "ny", "nz",
+                                                           "Qzz", "cos2", "N"};
 }
 
 /* ----------------------------------------------------------------------

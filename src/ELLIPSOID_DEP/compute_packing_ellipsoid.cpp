@@ -55,7 +55,8 @@ ComputePackingEllipsoid::ComputePackingEllipsoid(LAMMPS *lmp, int narg, char **a
     bool have_bottom = false, have_top = false;
     while (iarg < narg) {
       if (strcmp(arg[iarg], "bottom") == 0) {
-        if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "compute packing/ellipsoid bottom", error);
+        if (iarg + 2 > narg)
+          utils::missing_cmd_args(FLERR, "compute packing/ellipsoid bottom", error);
         nbottom = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
         have_bottom = true;
         iarg += 2;
@@ -88,7 +89,8 @@ ComputePackingEllipsoid::ComputePackingEllipsoid(LAMMPS *lmp, int narg, char **a
 
   while (iarg < narg) {
     if (strcmp(arg[iarg], "rattler") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "compute packing/ellipsoid rattler", error);
+      if (iarg + 2 > narg)
+        utils::missing_cmd_args(FLERR, "compute packing/ellipsoid rattler", error);
       rattler_min = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (rattler_min < 0) error->all(FLERR, "Compute packing/ellipsoid rattler must be >= 0");
       iarg += 2;
@@ -98,7 +100,8 @@ ComputePackingEllipsoid::ComputePackingEllipsoid(LAMMPS *lmp, int narg, char **a
       floor_z = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       iarg += 2;
     } else if (strcmp(arg[iarg], "surface") == 0 && automatic) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "compute packing/ellipsoid surface", error);
+      if (iarg + 2 > narg)
+        utils::missing_cmd_args(FLERR, "compute packing/ellipsoid surface", error);
       if (strcmp(arg[iarg + 1], "max") == 0)
         surface_mode = 0;
       else if (strcmp(arg[iarg + 1], "columns") == 0)
@@ -182,9 +185,7 @@ void ComputePackingEllipsoid::count_contacts(int nall)
     ncontact[i] += 1.0;
     if (j < nlocal || newton) ncontact[j] += 1.0;
   }
-  if (newton) {
-    comm->reverse_comm(this);
-  }
+  if (newton) { comm->reverse_comm(this); }
 }
 
 /* ----------------------------------------------------------------------
@@ -310,7 +311,9 @@ void ComputePackingEllipsoid::compute_vector()
   count_contacts(nall);
 
   double **x = atom->x;
-  auto in_slab = [&](int i) { return x[i][2] >= zlo && x[i][2] < zhi; };
+  auto in_slab = [&](int i) {
+    return x[i][2] >= zlo && x[i][2] < zhi;
+  };
 
   double sums[5] = {0.0, 0.0, 0.0, 0.0, 0.0};    // N, sum Z, N active, sum Z active, vsolid
   for (int i = 0; i < nlocal; i++)

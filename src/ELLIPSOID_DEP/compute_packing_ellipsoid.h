@@ -30,18 +30,18 @@ class ComputePackingEllipsoid : public Compute {
 
  private:
   class PairGranularEllipsoid *pair;
-  bool automatic;          // auto mode: slab from the deposit's extent
+  bool automatic;    // auto mode: slab from the deposit's extent
   double zlo_user, zhi_user;
-  int zlo_edge, zhi_edge;  // 1: EDGE (box bound)
-  double nbottom, ntop;    // auto: excluded mean diameters at the bottom and below the surface
+  int zlo_edge, zhi_edge;    // 1: EDGE (box bound)
+  double nbottom, ntop;      // auto: excluded mean diameters at the bottom and below the surface
   bool floor_given;
-  double floor_z;          // auto: z of the floor (default: lowest particle bottom)
-  int surface_mode;        // auto: 0 = max particle top, 1 = mean of per-column maxima
-  int rattler_min;         // rattlers: fewer than this many contacts (iterated)
+  double floor_z;      // auto: z of the floor (default: lowest particle bottom)
+  int surface_mode;    // auto: 0 = max particle top, 1 = mean of per-column maxima
+  int rattler_min;     // rattlers: fewer than this many contacts (iterated)
 
   int nmax;
-  double *ncontact;        // per atom (owned + ghost): contacts with active partners
-  double *active;          // per atom: 1 while in the group and not (yet) a rattler
+  double *ncontact;    // per atom (owned + ghost): contacts with active partners
+  double *active;      // per atom: 1 while in the group and not (yet) a rattler
 
   void grow();
   void count_contacts(int nall);

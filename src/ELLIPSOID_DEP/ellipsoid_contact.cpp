@@ -13,379 +13,381 @@ namespace EllipsoidDep {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kPi = 3.14159265358979323846;
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  constexpr double kPi = 3.14159265358979323846;
 
-inline bool finite3(const Vec3 &v)
-{
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-
-// make_ellipsoid decides validity once per body; a centre moved afterwards (periodic
-// images) is checked again because it is cheap
-inline bool valid(const Ellipsoid &e)
-{
-  return e.finite && finite3(e.center);
-}
-
-// Support half-width sqrt(n^T M n) (n need not be unit: degree-1 homogeneous).
-inline double support(const Mat3 &m, const Vec3 &n)
-{
-  return std::sqrt(std::max(n.dot(m * n), 0.0));
-}
-
-// Orthonormal tangent basis of a unit vector (branch-free-ish, Duff et al. 2017).
-inline void tangent_basis(const Vec3 &n, Vec3 &t1, Vec3 &t2)
-{
-  const double s = std::copysign(1.0, n[2]);
-  const double a = -1.0 / (s + n[2]);
-  const double b = n[0] * n[1] * a;
-  t1 = Vec3(1.0 + s * n[0] * n[0] * a, s * b, -s * n[0]);
-  t2 = Vec3(b, s + n[1] * n[1] * a, -n[1]);
-}
-
-inline double min_axis(const Ellipsoid &e) { return e.semi_axes.minCoeff(); }
-
-// Direction of the smallest semi-axis (fallback start when the centre line is undefined).
-inline Vec3 thin_axis(const Ellipsoid &e)
-{
-  int k = 0;
-  e.semi_axes.minCoeff(&k);
-  return e.rotation.col(k);
-}
-
-// State of the gap function d(n) = h_A(n) + h_B(n) - n.(c_B - c_A) at a unit n.
-struct Eval {
-  double ha, hb, d;
-  Vec3 man, mbn;   // M_A n, M_B n
-  Vec3 grad;       // gradient of the degree-1 extension = p_A - p_B
-};
-
-inline Eval evaluate(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, const Vec3 &n)
-{
-  Eval e;
-  e.man = a.inverse_form * n;
-  e.mbn = b.inverse_form * n;
-  e.ha = std::sqrt(std::max(n.dot(e.man), std::numeric_limits<double>::min()));
-  e.hb = std::sqrt(std::max(n.dot(e.mbn), std::numeric_limits<double>::min()));
-  e.grad = e.man / e.ha + e.mbn / e.hb - dc;
-  e.d = e.ha + e.hb - n.dot(dc);
-  return e;
-}
-
-void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const Eval &ev,
-                   ContactGeometry &g)
-{
-  g.normal = n;
-  g.overlap = ev.d;
-  g.point_a = a.center + ev.man / ev.ha;
-  g.point_b = b.center - ev.mbn / ev.hb;
-  g.point = 0.5 * (g.point_a + g.point_b);
-  const double ra = gaussian_radius(a, n), rb = gaussian_radius(b, -n);
-  g.effective_radius = ra * rb / (ra + rb);
-}
-
-// Paper eqs. (4)-(5): X = (A + l B)^-1 (A X_A + l B X_B), l = |(X - X_B)^T A (X - X_A)|.
-// Returns the point of the surface of "second" that minimises the potential of "first".
-Vec3 lagrange_point(const Ellipsoid &first, const Ellipsoid &second, int iters)
-{
-  const Mat3 &qa = first.form;
-  const Mat3 &qb = second.form;
-  const Vec3 qaxa = qa * first.center, qbxb = qb * second.center;
-  double lambda = 1.0;
-  Vec3 x = 0.5 * (first.center + second.center);
-  for (int k = 0; k < iters; ++k) {
-    const Mat3 m = qa + lambda * qb;
-    const Vec3 xn = m.llt().solve(qaxa + lambda * qbxb);
-    if (!finite3(xn)) break;
-    x = xn;
-    const double ln = std::fabs((x - second.center).dot(qa * (x - first.center)));
-    if (!(ln > 0.0) || !std::isfinite(ln)) break;
-    lambda = ln;
+  inline bool finite3(const Vec3 &v)
+  {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
   }
-  return x;
-}
 
-// Result of the minimisation of d over the unit sphere.
-struct MinResult {
-  Vec3 n;
-  Eval ev;
-  int iterations;
-  bool converged;
-};
+  // make_ellipsoid decides validity once per body; a centre moved afterwards (periodic
+  // images) is checked again because it is cheap
+  inline bool valid(const Ellipsoid &e)
+  {
+    return e.finite && finite3(e.center);
+  }
 
-// Safeguarded Riemannian Newton on d(n) over the unit sphere. The 2x2 Hessian is
-// T^T (H_A + H_B) T - d I with H = M/h - (Mn)(Mn)^T/h^3 (exact for the degree-1
-// extension); indefinite Hessians are shifted and long steps are line-searched.
-MinResult minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, Vec3 n,
-                       double tol, int max_iter)
-{
-  MinResult r;
-  r.n = n;
-  r.ev = evaluate(a, b, dc, n);
-  r.iterations = 0;
-  r.converged = false;
-  const double size = std::min(min_axis(a), min_axis(b));
-  for (int it = 0; it < max_iter; ++it) {
-    const Eval &ev = r.ev;
-    const double gn = ev.grad.dot(r.n);
-    const Vec3 gt = ev.grad - gn * r.n;
-    // round-off floor: d and grad carry ~eps*(|dc| + h) absolute error from cancellation
-    const double floor = 32.0 * kEps * (dc.norm() + ev.ha + ev.hb);
-    const double gtn = gt.norm();
-    // A start that is already stationary may be a saddle (symmetric configurations, e.g. the
-    // centre line in the mid-plane of a disc): only then is the curvature checked below.
-    const bool stationary = gtn <= std::max(tol * size, floor);
-    if (stationary && it > 0) {
-      r.converged = true;
-      return r;
+  // Support half-width sqrt(n^T M n) (n need not be unit: degree-1 homogeneous).
+  inline double support(const Mat3 &m, const Vec3 &n)
+  {
+    return std::sqrt(std::max(n.dot(m * n), 0.0));
+  }
+
+  // Orthonormal tangent basis of a unit vector (branch-free-ish, Duff et al. 2017).
+  inline void tangent_basis(const Vec3 &n, Vec3 &t1, Vec3 &t2)
+  {
+    const double s = std::copysign(1.0, n[2]);
+    const double a = -1.0 / (s + n[2]);
+    const double b = n[0] * n[1] * a;
+    t1 = Vec3(1.0 + s * n[0] * n[0] * a, s * b, -s * n[0]);
+    t2 = Vec3(b, s + n[1] * n[1] * a, -n[1]);
+  }
+
+  inline double min_axis(const Ellipsoid &e)
+  {
+    return e.semi_axes.minCoeff();
+  }
+
+  // Direction of the smallest semi-axis (fallback start when the centre line is undefined).
+  inline Vec3 thin_axis(const Ellipsoid &e)
+  {
+    int k = 0;
+    e.semi_axes.minCoeff(&k);
+    return e.rotation.col(k);
+  }
+
+  // State of the gap function d(n) = h_A(n) + h_B(n) - n.(c_B - c_A) at a unit n.
+  struct Eval {
+    double ha, hb, d;
+    Vec3 man, mbn;    // M_A n, M_B n
+    Vec3 grad;        // gradient of the degree-1 extension = p_A - p_B
+  };
+
+  inline Eval evaluate(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, const Vec3 &n)
+  {
+    Eval e;
+    e.man = a.inverse_form * n;
+    e.mbn = b.inverse_form * n;
+    e.ha = std::sqrt(std::max(n.dot(e.man), std::numeric_limits<double>::min()));
+    e.hb = std::sqrt(std::max(n.dot(e.mbn), std::numeric_limits<double>::min()));
+    e.grad = e.man / e.ha + e.mbn / e.hb - dc;
+    e.d = e.ha + e.hb - n.dot(dc);
+    return e;
+  }
+
+  void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const Eval &ev,
+                     ContactGeometry &g)
+  {
+    g.normal = n;
+    g.overlap = ev.d;
+    g.point_a = a.center + ev.man / ev.ha;
+    g.point_b = b.center - ev.mbn / ev.hb;
+    g.point = 0.5 * (g.point_a + g.point_b);
+    const double ra = gaussian_radius(a, n), rb = gaussian_radius(b, -n);
+    g.effective_radius = ra * rb / (ra + rb);
+  }
+
+  // Paper eqs. (4)-(5): X = (A + l B)^-1 (A X_A + l B X_B), l = |(X - X_B)^T A (X - X_A)|.
+  // Returns the point of the surface of "second" that minimises the potential of "first".
+  Vec3 lagrange_point(const Ellipsoid &first, const Ellipsoid &second, int iters)
+  {
+    const Mat3 &qa = first.form;
+    const Mat3 &qb = second.form;
+    const Vec3 qaxa = qa * first.center, qbxb = qb * second.center;
+    double lambda = 1.0;
+    Vec3 x = 0.5 * (first.center + second.center);
+    for (int k = 0; k < iters; ++k) {
+      const Mat3 m = qa + lambda * qb;
+      const Vec3 xn = m.llt().solve(qaxa + lambda * qbxb);
+      if (!finite3(xn)) break;
+      x = xn;
+      const double ln = std::fabs((x - second.center).dot(qa * (x - first.center)));
+      if (!(ln > 0.0) || !std::isfinite(ln)) break;
+      lambda = ln;
     }
-    Vec3 t1, t2;
-    tangent_basis(r.n, t1, t2);
-    const Vec3 ua = ev.man / ev.ha, ub = ev.mbn / ev.hb;
-    const Vec3 at1 = a.inverse_form * t1, at2 = a.inverse_form * t2;
-    const Vec3 bt1 = b.inverse_form * t1, bt2 = b.inverse_form * t2;
-    const double ua1 = ua.dot(t1), ua2 = ua.dot(t2), ub1 = ub.dot(t1), ub2 = ub.dot(t2);
-    double h11 = (t1.dot(at1) - ua1 * ua1) / ev.ha + (t1.dot(bt1) - ub1 * ub1) / ev.hb - gn;
-    double h22 = (t2.dot(at2) - ua2 * ua2) / ev.ha + (t2.dot(bt2) - ub2 * ub2) / ev.hb - gn;
-    const double h12 =
-        (t1.dot(at2) - ua1 * ua2) / ev.ha + (t1.dot(bt2) - ub1 * ub2) / ev.hb;
-    const double g1 = gt.dot(t1), g2 = gt.dot(t2);
-    // smallest eigenvalue of the 2x2; shift to keep the model convex
-    const double tr = 0.5 * (h11 + h22);
-    const double disc = std::sqrt(0.25 * (h11 - h22) * (h11 - h22) + h12 * h12);
-    const double lmin = tr - disc;
-    const double hscale = std::max(std::fabs(tr) + disc, size);
-    if (stationary) {
-      if (!(lmin < -1e-6 * hscale)) {
+    return x;
+  }
+
+  // Result of the minimisation of d over the unit sphere.
+  struct MinResult {
+    Vec3 n;
+    Eval ev;
+    int iterations;
+    bool converged;
+  };
+
+  // Safeguarded Riemannian Newton on d(n) over the unit sphere. The 2x2 Hessian is
+  // T^T (H_A + H_B) T - d I with H = M/h - (Mn)(Mn)^T/h^3 (exact for the degree-1
+  // extension); indefinite Hessians are shifted and long steps are line-searched.
+  MinResult minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, Vec3 n, double tol,
+                         int max_iter)
+  {
+    MinResult r;
+    r.n = n;
+    r.ev = evaluate(a, b, dc, n);
+    r.iterations = 0;
+    r.converged = false;
+    const double size = std::min(min_axis(a), min_axis(b));
+    for (int it = 0; it < max_iter; ++it) {
+      const Eval &ev = r.ev;
+      const double gn = ev.grad.dot(r.n);
+      const Vec3 gt = ev.grad - gn * r.n;
+      // round-off floor: d and grad carry ~eps*(|dc| + h) absolute error from cancellation
+      const double floor = 32.0 * kEps * (dc.norm() + ev.ha + ev.hb);
+      const double gtn = gt.norm();
+      // A start that is already stationary may be a saddle (symmetric configurations, e.g. the
+      // centre line in the mid-plane of a disc): only then is the curvature checked below.
+      const bool stationary = gtn <= std::max(tol * size, floor);
+      if (stationary && it > 0) {
         r.converged = true;
         return r;
       }
-    }
-    ++r.iterations;
-    if (lmin < 1e-3 * hscale) {
-      const double shift = 1e-3 * hscale - lmin;
-      h11 += shift;
-      h22 += shift;
-    }
-    const double det = h11 * h22 - h12 * h12;
-    double v1 = -(h22 * g1 - h12 * g2) / det;
-    double v2 = -(h11 * g2 - h12 * g1) / det;
-    double step = std::sqrt(v1 * v1 + v2 * v2);
-    if (stationary) {   // saddle: leave along the negative-curvature eigenvector
-      const double h11u = h11 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
-      const double h22u = h22 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
-      double e1 = h12, e2 = lmin - h11u;
-      if (e1 * e1 + e2 * e2 < (lmin - h22u) * (lmin - h22u) + h12 * h12) {
-        e1 = lmin - h22u;
-        e2 = h12;
+      Vec3 t1, t2;
+      tangent_basis(r.n, t1, t2);
+      const Vec3 ua = ev.man / ev.ha, ub = ev.mbn / ev.hb;
+      const Vec3 at1 = a.inverse_form * t1, at2 = a.inverse_form * t2;
+      const Vec3 bt1 = b.inverse_form * t1, bt2 = b.inverse_form * t2;
+      const double ua1 = ua.dot(t1), ua2 = ua.dot(t2), ub1 = ub.dot(t1), ub2 = ub.dot(t2);
+      double h11 = (t1.dot(at1) - ua1 * ua1) / ev.ha + (t1.dot(bt1) - ub1 * ub1) / ev.hb - gn;
+      double h22 = (t2.dot(at2) - ua2 * ua2) / ev.ha + (t2.dot(bt2) - ub2 * ub2) / ev.hb - gn;
+      const double h12 = (t1.dot(at2) - ua1 * ua2) / ev.ha + (t1.dot(bt2) - ub1 * ub2) / ev.hb;
+      const double g1 = gt.dot(t1), g2 = gt.dot(t2);
+      // smallest eigenvalue of the 2x2; shift to keep the model convex
+      const double tr = 0.5 * (h11 + h22);
+      const double disc = std::sqrt(0.25 * (h11 - h22) * (h11 - h22) + h12 * h12);
+      const double lmin = tr - disc;
+      const double hscale = std::max(std::fabs(tr) + disc, size);
+      if (stationary) {
+        if (!(lmin < -1e-6 * hscale)) {
+          r.converged = true;
+          return r;
+        }
       }
-      const double en = std::sqrt(e1 * e1 + e2 * e2);
-      if (!(en > 0.0)) {
-        e1 = 1.0;
-        e2 = 0.0;
-      } else {
-        e1 /= en;
-        e2 /= en;
+      ++r.iterations;
+      if (lmin < 1e-3 * hscale) {
+        const double shift = 1e-3 * hscale - lmin;
+        h11 += shift;
+        h22 += shift;
       }
-      if (e1 * g1 + e2 * g2 > 0.0) {
-        e1 = -e1;
-        e2 = -e2;
+      const double det = h11 * h22 - h12 * h12;
+      double v1 = -(h22 * g1 - h12 * g2) / det;
+      double v2 = -(h11 * g2 - h12 * g1) / det;
+      double step = std::sqrt(v1 * v1 + v2 * v2);
+      if (stationary) {    // saddle: leave along the negative-curvature eigenvector
+        const double h11u = h11 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
+        const double h22u = h22 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
+        double e1 = h12, e2 = lmin - h11u;
+        if (e1 * e1 + e2 * e2 < (lmin - h22u) * (lmin - h22u) + h12 * h12) {
+          e1 = lmin - h22u;
+          e2 = h12;
+        }
+        const double en = std::sqrt(e1 * e1 + e2 * e2);
+        if (!(en > 0.0)) {
+          e1 = 1.0;
+          e2 = 0.0;
+        } else {
+          e1 /= en;
+          e2 /= en;
+        }
+        if (e1 * g1 + e2 * g2 > 0.0) {
+          e1 = -e1;
+          e2 = -e2;
+        }
+        v1 = 0.25 * e1;
+        v2 = 0.25 * e2;
+        step = 0.25;
+        Vec3 nn = (r.n + v1 * t1 + v2 * t2).normalized();
+        Eval en2 = evaluate(a, b, dc, nn);
+        int k = 0;
+        while (!(en2.d < ev.d) && k < 30) {
+          v1 *= 0.5;
+          v2 *= 0.5;
+          nn = (r.n + v1 * t1 + v2 * t2).normalized();
+          en2 = evaluate(a, b, dc, nn);
+          ++k;
+        }
+        if (k == 30) {    // flat to round-off: accept the stationary point
+          r.converged = true;
+          return r;
+        }
+        r.n = nn;
+        r.ev = en2;
+        continue;
       }
-      v1 = 0.25 * e1;
-      v2 = 0.25 * e2;
-      step = 0.25;
+      if (!std::isfinite(step)) {    // should not happen; steepest descent fallback
+        v1 = -g1 / hscale;
+        v2 = -g2 / hscale;
+        step = std::sqrt(v1 * v1 + v2 * v2);
+      }
+      const double max_step = 0.5;    // trust radius in radians
+      if (step > max_step) {
+        v1 *= max_step / step;
+        v2 *= max_step / step;
+        step = max_step;
+      }
+      // Near the minimiser the pure Newton step is safe and the line search would only
+      // see round-off; far away, Armijo backtracking guarantees descent.
       Vec3 nn = (r.n + v1 * t1 + v2 * t2).normalized();
-      Eval en2 = evaluate(a, b, dc, nn);
-      int k = 0;
-      while (!(en2.d < ev.d) && k < 30) {
-        v1 *= 0.5;
-        v2 *= 0.5;
-        nn = (r.n + v1 * t1 + v2 * t2).normalized();
-        en2 = evaluate(a, b, dc, nn);
-        ++k;
-      }
-      if (k == 30) {   // flat to round-off: accept the stationary point
-        r.converged = true;
-        return r;
+      Eval en = evaluate(a, b, dc, nn);
+      if (step > 1e-4) {
+        const double slope = g1 * v1 + g2 * v2;    // < 0
+        int k = 0;
+        while (!(en.d <= ev.d + 1e-4 * slope) && k < 40) {
+          v1 *= 0.5;
+          v2 *= 0.5;
+          nn = (r.n + v1 * t1 + v2 * t2).normalized();
+          en = evaluate(a, b, dc, nn);
+          ++k;
+        }
+        if (k == 40) return r;    // no descent possible: round-off bound, not converged
       }
       r.n = nn;
-      r.ev = en2;
-      continue;
-    }
-    if (!std::isfinite(step)) {    // should not happen; steepest descent fallback
-      v1 = -g1 / hscale;
-      v2 = -g2 / hscale;
-      step = std::sqrt(v1 * v1 + v2 * v2);
-    }
-    const double max_step = 0.5;   // trust radius in radians
-    if (step > max_step) {
-      v1 *= max_step / step;
-      v2 *= max_step / step;
-      step = max_step;
-    }
-    // Near the minimiser the pure Newton step is safe and the line search would only
-    // see round-off; far away, Armijo backtracking guarantees descent.
-    Vec3 nn = (r.n + v1 * t1 + v2 * t2).normalized();
-    Eval en = evaluate(a, b, dc, nn);
-    if (step > 1e-4) {
-      const double slope = g1 * v1 + g2 * v2;   // < 0
-      int k = 0;
-      while (!(en.d <= ev.d + 1e-4 * slope) && k < 40) {
-        v1 *= 0.5;
-        v2 *= 0.5;
-        nn = (r.n + v1 * t1 + v2 * t2).normalized();
-        en = evaluate(a, b, dc, nn);
-        ++k;
+      r.ev = en;
+      if (step < 1e-3 * tol) {    // step below resolution: converged to round-off
+        r.converged = true;
+        return r;
       }
-      if (k == 40) return r;    // no descent possible: round-off bound, not converged
     }
-    r.n = nn;
-    r.ev = en;
-    if (step < 1e-3 * tol) {    // step below resolution: converged to round-off
-      r.converged = true;
-      return r;
-    }
+    // final convergence check after the last step
+    const Vec3 gt = r.ev.grad - r.ev.grad.dot(r.n) * r.n;
+    const double floor = 32.0 * kEps * (dc.norm() + r.ev.ha + r.ev.hb);
+    r.converged = gt.norm() <= std::max(tol * size, floor);
+    return r;
   }
-  // final convergence check after the last step
-  const Vec3 gt = r.ev.grad - r.ev.grad.dot(r.n) * r.n;
-  const double floor = 32.0 * kEps * (dc.norm() + r.ev.ha + r.ev.hb);
-  r.converged = gt.norm() <= std::max(tol * size, floor);
-  return r;
-}
 
-// Start direction (A to B) of the iteration and the Perram-type estimate.
-struct Start {
-  Vec3 n;
-  int iterations;
-  bool perram;      // the Perram points are valid
-  Vec3 xa, xb;      // X_m^(B) (on A, deepest in B) and X_m^(A) (on B, deepest in A)
-};
-
-Start cold_start(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc)
-{
-  Start s{Vec3::Zero(), 0, false, Vec3::Zero(), Vec3::Zero()};
-  s.iterations = 0;
-  s.perram = false;
-  const double dn = dc.norm();
-  const double size = std::min(min_axis(a), min_axis(b));
-  const Vec3 line = dn > 1e-12 * size ? Vec3(dc / dn) : thin_axis(a);
-  s.n = line;
-  if ((a.sphere && b.sphere) || dn <= 1e-12 * size) return s;
-  auto gapf = [&](const Vec3 &n) {
-    return support(a.inverse_form, n) + support(b.inverse_form, n) - n.dot(dc);
+  // Start direction (A to B) of the iteration and the Perram-type estimate.
+  struct Start {
+    Vec3 n;
+    int iterations;
+    bool perram;    // the Perram points are valid
+    Vec3 xa, xb;    // X_m^(B) (on A, deepest in B) and X_m^(A) (on B, deepest in A)
   };
-  // Several cheap candidates; keep the one with the smallest gap function. A start with
-  // d < 0 lies in the (spherically convex) sublevel set {d < 0} of a disjoint pair, so the
-  // descent iteration then cannot end in a spurious positive local minimum. Besides the
-  // centre line: the surface normals where the centre line crosses each surface (good when
-  // one body is much larger), and the Perram-type vector and the normals at its points.
-  double best = gapf(line);
-  auto consider = [&](Vec3 n) {
-    const double nn = n.norm();
-    if (!(nn > 0.0) || !std::isfinite(nn)) return;
-    n /= nn;
-    const double dv = gapf(n);
-    if (dv < best) {
-      best = dv;
-      s.n = n;
-    }
+
+  Start cold_start(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc)
+  {
+    Start s{Vec3::Zero(), 0, false, Vec3::Zero(), Vec3::Zero()};
+    s.iterations = 0;
+    s.perram = false;
+    const double dn = dc.norm();
+    const double size = std::min(min_axis(a), min_axis(b));
+    const Vec3 line = dn > 1e-12 * size ? Vec3(dc / dn) : thin_axis(a);
+    s.n = line;
+    if ((a.sphere && b.sphere) || dn <= 1e-12 * size) return s;
+    auto gapf = [&](const Vec3 &n) {
+      return support(a.inverse_form, n) + support(b.inverse_form, n) - n.dot(dc);
+    };
+    // Several cheap candidates; keep the one with the smallest gap function. A start with
+    // d < 0 lies in the (spherically convex) sublevel set {d < 0} of a disjoint pair, so the
+    // descent iteration then cannot end in a spurious positive local minimum. Besides the
+    // centre line: the surface normals where the centre line crosses each surface (good when
+    // one body is much larger), and the Perram-type vector and the normals at its points.
+    double best = gapf(line);
+    auto consider = [&](Vec3 n) {
+      const double nn = n.norm();
+      if (!(nn > 0.0) || !std::isfinite(nn)) return;
+      n /= nn;
+      const double dv = gapf(n);
+      if (dv < best) {
+        best = dv;
+        s.n = n;
+      }
+    };
+    consider(a.form * dc);
+    consider(b.form * dc);
+    if (a.sphere || b.sphere) return s;
+    const int iters = 4;
+    s.xb = lagrange_point(b, a, iters);    // on A's surface, minimising f_B
+    s.xa = lagrange_point(a, b, iters);    // on B's surface, minimising f_A
+    s.iterations = 2 * iters;
+    Vec3 xi = s.xb - s.xa;    // overlapping pairs: points from A's side to B's side
+    const double xn = xi.norm();
+    if (!(xn > 1e-12 * size) || !finite3(xi)) return s;
+    consider(xi);
+    consider(-xi);
+    consider(a.form * (s.xb - a.center));       // A's outer normal at its Perram point
+    consider(-(b.form * (s.xa - b.center)));    // B's inner normal at its Perram point
+    s.perram = true;
+    return s;
+  }
+
+  // --- Wang et al. quartic ----------------------------------------------------
+
+  // Polynomial c[0] + c[1] x + ... + c[deg] x^deg, normalised to max |c| = 1.
+  struct Poly {
+    double c[5];
+    int deg;
   };
-  consider(a.form * dc);
-  consider(b.form * dc);
-  if (a.sphere || b.sphere) return s;
-  const int iters = 4;
-  s.xb = lagrange_point(b, a, iters);   // on A's surface, minimising f_B
-  s.xa = lagrange_point(a, b, iters);   // on B's surface, minimising f_A
-  s.iterations = 2 * iters;
-  Vec3 xi = s.xb - s.xa;   // overlapping pairs: points from A's side to B's side
-  const double xn = xi.norm();
-  if (!(xn > 1e-12 * size) || !finite3(xi)) return s;
-  consider(xi);
-  consider(-xi);
-  consider(a.form * (s.xb - a.center));    // A's outer normal at its Perram point
-  consider(-(b.form * (s.xa - b.center))); // B's inner normal at its Perram point
-  s.perram = true;
-  return s;
-}
 
-// --- Wang et al. quartic ----------------------------------------------------
-
-// Polynomial c[0] + c[1] x + ... + c[deg] x^deg, normalised to max |c| = 1.
-struct Poly {
-  double c[5];
-  int deg;
-};
-
-void normalise(Poly &p)
-{
-  double m = 0.0;
-  for (int i = 0; i <= p.deg; ++i) m = std::max(m, std::fabs(p.c[i]));
-  if (m > 0.0) {
-    const double im = 1.0 / m;
-    for (int i = 0; i <= p.deg; ++i) p.c[i] *= im;
-  }
-}
-
-// -rem(u, v) normalised; returns false when the remainder vanishes within `zero`.
-bool neg_rem(const Poly &u, const Poly &v, double zero, Poly &r)
-{
-  double w[5];
-  for (int i = 0; i <= u.deg; ++i) w[i] = u.c[i];
-  const double ilead = 1.0 / v.c[v.deg];
-  for (int k = u.deg; k >= v.deg; --k) {
-    const double q = w[k] * ilead;
-    for (int j = 0; j <= v.deg; ++j) w[k - v.deg + j] -= q * v.c[j];
-    w[k] = 0.0;
-  }
-  r.deg = v.deg - 1;
-  double m = 0.0;
-  for (int i = 0; i <= r.deg; ++i) {
-    r.c[i] = -w[i];
-    m = std::max(m, std::fabs(w[i]));
-  }
-  if (!(m > zero)) return false;
-  // trim leading coefficients at round-off level so the next division is well defined
-  while (r.deg > 0 && std::fabs(r.c[r.deg]) <= 64.0 * kEps * m) --r.deg;
-  normalise(r);
-  return true;
-}
-
-// Number of distinct positive roots of a monic quartic with p(0) > 0 (Sturm's theorem
-// on (0, inf)). A remainder whose size is below `band` relative to the normalised
-// chain ends the chain: that is a (numerical) multiple root.
-int positive_roots(const double b[5], double band)
-{
-  Poly chain[5];
-  int len = 0;
-  Poly p0;
-  p0.deg = 4;
-  for (int i = 0; i < 5; ++i) p0.c[i] = b[i];
-  normalise(p0);
-  Poly p1;
-  p1.deg = 3;
-  for (int i = 0; i < 4; ++i) p1.c[i] = (i + 1) * b[i + 1];
-  normalise(p1);
-  chain[len++] = p0;
-  chain[len++] = p1;
-  while (chain[len - 1].deg > 0 && len < 5) {
-    Poly r;
-    if (!neg_rem(chain[len - 2], chain[len - 1], band, r)) break;
-    chain[len++] = r;
-  }
-  auto changes = [&](bool at_zero) {
-    int v = 0;
-    double prev = 0.0;
-    for (int i = 0; i < len; ++i) {
-      const double s = at_zero ? chain[i].c[0] : chain[i].c[chain[i].deg];
-      if (s == 0.0) continue;
-      if (prev != 0.0 && (s > 0.0) != (prev > 0.0)) ++v;
-      prev = s;
+  void normalise(Poly &p)
+  {
+    double m = 0.0;
+    for (int i = 0; i <= p.deg; ++i) m = std::max(m, std::fabs(p.c[i]));
+    if (m > 0.0) {
+      const double im = 1.0 / m;
+      for (int i = 0; i <= p.deg; ++i) p.c[i] *= im;
     }
-    return v;
-  };
-  return changes(true) - changes(false);
-}
+  }
+
+  // -rem(u, v) normalised; returns false when the remainder vanishes within `zero`.
+  bool neg_rem(const Poly &u, const Poly &v, double zero, Poly &r)
+  {
+    double w[5];
+    for (int i = 0; i <= u.deg; ++i) w[i] = u.c[i];
+    const double ilead = 1.0 / v.c[v.deg];
+    for (int k = u.deg; k >= v.deg; --k) {
+      const double q = w[k] * ilead;
+      for (int j = 0; j <= v.deg; ++j) w[k - v.deg + j] -= q * v.c[j];
+      w[k] = 0.0;
+    }
+    r.deg = v.deg - 1;
+    double m = 0.0;
+    for (int i = 0; i <= r.deg; ++i) {
+      r.c[i] = -w[i];
+      m = std::max(m, std::fabs(w[i]));
+    }
+    if (!(m > zero)) return false;
+    // trim leading coefficients at round-off level so the next division is well defined
+    while (r.deg > 0 && std::fabs(r.c[r.deg]) <= 64.0 * kEps * m) --r.deg;
+    normalise(r);
+    return true;
+  }
+
+  // Number of distinct positive roots of a monic quartic with p(0) > 0 (Sturm's theorem
+  // on (0, inf)). A remainder whose size is below `band` relative to the normalised
+  // chain ends the chain: that is a (numerical) multiple root.
+  int positive_roots(const double b[5], double band)
+  {
+    Poly chain[5];
+    int len = 0;
+    Poly p0;
+    p0.deg = 4;
+    for (int i = 0; i < 5; ++i) p0.c[i] = b[i];
+    normalise(p0);
+    Poly p1;
+    p1.deg = 3;
+    for (int i = 0; i < 4; ++i) p1.c[i] = (i + 1) * b[i + 1];
+    normalise(p1);
+    chain[len++] = p0;
+    chain[len++] = p1;
+    while (chain[len - 1].deg > 0 && len < 5) {
+      Poly r;
+      if (!neg_rem(chain[len - 2], chain[len - 1], band, r)) break;
+      chain[len++] = r;
+    }
+    auto changes = [&](bool at_zero) {
+      int v = 0;
+      double prev = 0.0;
+      for (int i = 0; i < len; ++i) {
+        const double s = at_zero ? chain[i].c[0] : chain[i].c[chain[i].deg];
+        if (s == 0.0) continue;
+        if (prev != 0.0 && (s > 0.0) != (prev > 0.0)) ++v;
+        prev = s;
+      }
+      return v;
+    };
+    return changes(true) - changes(false);
+  }
 
 }    // namespace
 
@@ -437,7 +439,7 @@ Ellipsoid make_ellipsoid(const Vec3 &center, const double quat[4], const Vec3 &s
     q.coeffs() /= nq;
     r = q.toRotationMatrix();
   } else {
-    r.setConstant(std::numeric_limits<double>::quiet_NaN());   // flagged Degenerate later
+    r.setConstant(std::numeric_limits<double>::quiet_NaN());    // flagged Degenerate later
   }
   return make_ellipsoid(center, r, semi_axes);
 }
@@ -467,13 +469,13 @@ Status wang_classify(const Ellipsoid &a, const Ellipsoid &b, const ContactSettin
   // x = c_A + R_A S y, S = diag(axes_A): A is the unit sphere in y
   const Mat3 rs = a.rotation * a.semi_axes.asDiagonal();
   const Mat3 q = rs.transpose() * b.form * rs;
-  const Vec3 c = (a.semi_axes.cwiseInverse()).asDiagonal() *
-      (a.rotation.transpose() * (b.center - a.center));
+  const Vec3 c =
+      (a.semi_axes.cwiseInverse()).asDiagonal() * (a.rotation.transpose() * (b.center - a.center));
   const Vec3 g = q * c;
   const double s = c.dot(g);
   const double t = q.trace();
-  const double e2 = q(0, 0) * q(1, 1) - q(0, 1) * q(1, 0) + q(0, 0) * q(2, 2) -
-      q(0, 2) * q(2, 0) + q(1, 1) * q(2, 2) - q(1, 2) * q(2, 1);
+  const double e2 = q(0, 0) * q(1, 1) - q(0, 1) * q(1, 0) + q(0, 0) * q(2, 2) - q(0, 2) * q(2, 0) +
+      q(1, 1) * q(2, 2) - q(1, 2) * q(2, 1);
   // det Q = det(S)^2 det(Q_B) in closed form
   const double vr = (a.semi_axes[0] * a.semi_axes[1] * a.semi_axes[2]) /
       (b.semi_axes[0] * b.semi_axes[1] * b.semi_axes[2]);
@@ -642,7 +644,7 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
   g.iterations = it0 + m.iterations;
   g.corrected = true;
   if (g.overlap <= 0.0)
-    g.status = Status::Separated;   // d(n) <= 0 for some n proves separation
+    g.status = Status::Separated;    // d(n) <= 0 for some n proves separation
   else
     g.status = m.converged ? Status::Overlapping : Status::NotConverged;
   if (!finite3(g.normal) || !std::isfinite(g.overlap) || !finite3(g.point)) {
@@ -664,11 +666,11 @@ ContactGeometry ellipsoid_plane_contact(const Ellipsoid &e, const Vec3 &wall_nor
   const Vec3 n = wall_normal.normalized();
   const Vec3 mn = e.inverse_form * n;
   const double h = std::sqrt(n.dot(mn));
-  const Vec3 p = e.center - mn / h;   // lowest point along n
+  const Vec3 p = e.center - mn / h;    // lowest point along n
   g.overlap = wall_offset - n.dot(p);
   g.normal = -n;
   g.point_a = p;
-  g.point_b = p + g.overlap * n;      // projection on the wall
+  g.point_b = p + g.overlap * n;    // projection on the wall
   g.point = 0.5 * (g.point_a + g.point_b);
   g.effective_radius = gaussian_radius(e, -n);
   g.status = g.overlap > 0.0 ? Status::Overlapping : Status::Separated;
@@ -683,7 +685,7 @@ double ellipsoid_slab_volume(const Ellipsoid &e, double zlo, double zhi)
   const double t1 = std::clamp((zlo - e.center[2]) / h, -1.0, 1.0);
   const double t2 = std::clamp((zhi - e.center[2]) / h, -1.0, 1.0);
   if (!(t2 > t1)) return 0.0;
-  const double integral = (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0;   // in [0, 4/3]
+  const double integral = (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0;    // in [0, 4/3]
   return 0.75 * e.volume() * integral;
 }
 
@@ -703,26 +705,26 @@ void PipelineCounters::add(const PipelineCounters &o)
 }
 
 namespace {
-inline void clear_cache(double *cache)
-{
-  for (int i = 0; i < PAIR_CACHE_SIZE; ++i) cache[i] = 0.0;
-}
-
-// plane {n.x = offset} stored as (n, u): it passes through c_A + (1/2 + u)(c_B - c_A)
-inline void store_plane(double *cache, const Vec3 &n, double offset, const Vec3 &ca,
-                        const Vec3 &dc)
-{
-  const double nd = n.dot(dc);
-  if (!(nd > 0.0)) {
-    clear_cache(cache);
-    return;
+  inline void clear_cache(double *cache)
+  {
+    for (int i = 0; i < PAIR_CACHE_SIZE; ++i) cache[i] = 0.0;
   }
-  cache[0] = 1.0;
-  cache[1] = n[0];
-  cache[2] = n[1];
-  cache[3] = n[2];
-  cache[4] = (offset - n.dot(ca)) / nd - 0.5;
-}
+
+  // plane {n.x = offset} stored as (n, u): it passes through c_A + (1/2 + u)(c_B - c_A)
+  inline void store_plane(double *cache, const Vec3 &n, double offset, const Vec3 &ca,
+                          const Vec3 &dc)
+  {
+    const double nd = n.dot(dc);
+    if (!(nd > 0.0)) {
+      clear_cache(cache);
+      return;
+    }
+    cache[0] = 1.0;
+    cache[1] = n[0];
+    cache[2] = n[1];
+    cache[3] = n[2];
+    cache[4] = (offset - n.dot(ca)) / nd - 0.5;
+  }
 }    // namespace
 
 ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
@@ -740,13 +742,13 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
     clear_cache(cache);
     g.status = Status::Separated;
     g.normal = dc / dist;
-    g.overlap = reach - dist;   // minus a lower bound of the distance
+    g.overlap = reach - dist;    // minus a lower bound of the distance
     return g;
   }
   const int state = static_cast<int>(std::fabs(cache[0]) + 0.5);
   const Vec3 cached_n(cache[1], cache[2], cache[3]);
-  const bool have_n = (state == 1 || state == 2) && finite3(cached_n) &&
-      cached_n.squaredNorm() > 0.25;
+  const bool have_n =
+      (state == 1 || state == 2) && finite3(cached_n) && cached_n.squaredNorm() > 0.25;
   if (state == 1 && have_n && settings.use_planes) {
     SeparatingPlane pl;
     pl.normal = cached_n;

@@ -32,13 +32,13 @@ using Mat4 = Eigen::Matrix4d;
 
 struct Ellipsoid {
   Vec3 center;
-  Mat3 rotation;    // body -> box; columns are the body axes in box coordinates
-  Vec3 semi_axes;   // along the body axes, any order, all > 0
-  Mat3 form;        // Q = R diag(1/a^2) R^T  (the paper's A)
-  Mat3 inverse_form;  // M = R diag(a^2) R^T  (support function)
-  double bounding_radius;  // largest semi-axis
-  bool sphere;             // all semi-axes equal to round-off: closed-form path
-  bool finite = false;     // every entry finite and semi-axes > 0 (checked once, here)
+  Mat3 rotation;             // body -> box; columns are the body axes in box coordinates
+  Vec3 semi_axes;            // along the body axes, any order, all > 0
+  Mat3 form;                 // Q = R diag(1/a^2) R^T  (the paper's A)
+  Mat3 inverse_form;         // M = R diag(a^2) R^T  (support function)
+  double bounding_radius;    // largest semi-axis
+  bool sphere;               // all semi-axes equal to round-off: closed-form path
+  bool finite = false;       // every entry finite and semi-axes > 0 (checked once, here)
 
   // the paper's 4x4 homogeneous matrix: X^T H X = 0 on the surface, X = (x,1)
   Mat4 homogeneous() const;
@@ -51,24 +51,24 @@ Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &s
 
 // Knobs that trade speed for accuracy; pair_style keywords map onto these.
 struct ContactSettings {
-  double tolerance = 1e-12;        // relative convergence of the contact iteration
-  int max_iterations = 50;         // per contact evaluation
-  double correction_angle = 0.0;   // radians; correct the Perram-type vector when it deviates
-                                   // from the surface gradients by more than this (0: always)
-  double wang_band = 1e-9;         // relative band around a double root: "touching" (see .cpp)
+  double tolerance = 1e-12;         // relative convergence of the contact iteration
+  int max_iterations = 50;          // per contact evaluation
+  double correction_angle = 0.0;    // radians; correct the Perram-type vector when it deviates
+                                    // from the surface gradients by more than this (0: always)
+  double wang_band = 1e-9;          // relative band around a double root: "touching" (see .cpp)
 };
 
 enum class Status {
-  Separated = 0,      // disjoint; a separating plane is returned
-  Touching = 1,       // inside the tangency band of the Wang test; resolved by the iteration
-  Overlapping = 2,    // contact geometry is valid
-  NotConverged = 3,   // iteration cap reached; geometry holds the last iterate, flagged
-  Degenerate = 4      // input cannot be handled (non-finite, zero axis); nothing computed
+  Separated = 0,       // disjoint; a separating plane is returned
+  Touching = 1,        // inside the tangency band of the Wang test; resolved by the iteration
+  Overlapping = 2,     // contact geometry is valid
+  NotConverged = 3,    // iteration cap reached; geometry holds the last iterate, flagged
+  Degenerate = 4       // input cannot be handled (non-finite, zero axis); nothing computed
 };
 
 // Separating plane {x : n.x = offset}; A lies on the side n.x < offset, B on n.x > offset.
 struct SeparatingPlane {
-  Vec3 normal;      // unit, from A towards B
+  Vec3 normal;    // unit, from A towards B
   double offset;
 };
 
@@ -77,22 +77,22 @@ bool plane_separates(const SeparatingPlane &plane, const Ellipsoid &a, const Ell
 
 // Wang et al. decision from the roots of det(nu*A + B) (4x4 homogeneous matrices).
 struct WangResult {
-  Status status;          // Separated, Touching or Overlapping (or Degenerate)
-  SeparatingPlane plane;  // valid when Separated: built from the self-polar tetrahedron
+  Status status;            // Separated, Touching or Overlapping (or Degenerate)
+  SeparatingPlane plane;    // valid when Separated: built from the self-polar tetrahedron
 };
 WangResult wang_test(const Ellipsoid &a, const Ellipsoid &b, const ContactSettings &settings);
 
 // Geometry the force laws need. normal points from A to B.
 struct ContactGeometry {
   Status status = Status::Separated;
-  int iterations = 0;      // Lagrange + correction iterations used
-  bool corrected = false;  // the normal-correcting step was applied
+  int iterations = 0;        // Lagrange + correction iterations used
+  bool corrected = false;    // the normal-correcting step was applied
   Vec3 normal = Vec3::Zero();
-  double overlap = 0.0;    // length of the contact vector xi (> 0 when overlapping)
-  Vec3 point = Vec3::Zero();           // contact point X_c (box coordinates)
-  Vec3 point_a = Vec3::Zero();         // surface point of A deepest in B
-  Vec3 point_b = Vec3::Zero();         // surface point of B deepest in A
-  double effective_radius = 0.0;       // R* = RA RB / (RA + RB), Gaussian-curvature radii at +-n
+  double overlap = 0.0;             // length of the contact vector xi (> 0 when overlapping)
+  Vec3 point = Vec3::Zero();        // contact point X_c (box coordinates)
+  Vec3 point_a = Vec3::Zero();      // surface point of A deepest in B
+  Vec3 point_b = Vec3::Zero();      // surface point of B deepest in A
+  double effective_radius = 0.0;    // R* = RA RB / (RA + RB), Gaussian-curvature radii at +-n
 };
 
 // Contact of two ellipsoids whose Wang test (or bounding test) says they may overlap.
@@ -119,7 +119,6 @@ double ellipsoid_slab_volume(const Ellipsoid &e, double zlo, double zhi);
 // Gaussian-curvature radius sqrt(R1 R2) of the surface where its outer normal is n.
 double gaussian_radius(const Ellipsoid &e, const Vec3 &unit_normal);
 
-
 // ---------------------------------------------------------------------------
 // The whole per-pair pipeline of the paper (Fig. 2), for callers that keep a
 // small per-pair cache between steps: bounding spheres -> cached separating plane
@@ -128,8 +127,8 @@ double gaussian_radius(const Ellipsoid &e, const Vec3 &unit_normal);
 
 struct PipelineSettings {
   ContactSettings contact;
-  bool use_planes = true;   // cache separating planes of disjoint pairs
-  bool use_wang = true;     // false: go straight to the contact iteration
+  bool use_planes = true;    // cache separating planes of disjoint pairs
+  bool use_wang = true;      // false: go straight to the contact iteration
 };
 
 // Per-pair cache, PAIR_CACHE_SIZE doubles. Every entry changes sign when A and B are
@@ -140,17 +139,17 @@ struct PipelineSettings {
 constexpr int PAIR_CACHE_SIZE = 5;
 
 struct PipelineCounters {
-  long long pairs = 0;            // pairs evaluated
-  long long bounding_rejects = 0; // bounding spheres disjoint
-  long long plane_hits = 0;       // cached plane still separates
+  long long pairs = 0;               // pairs evaluated
+  long long bounding_rejects = 0;    // bounding spheres disjoint
+  long long plane_hits = 0;          // cached plane still separates
   long long wang_calls = 0;
-  long long wang_separated = 0;   // Wang said disjoint (plane built)
-  long long contacts = 0;         // overlapping results
-  long long iterations = 0;       // summed over contact evaluations
-  long long corrections = 0;      // normal-correcting step applied
-  long long not_converged = 0;    // iteration cap reached (contact still used, flagged)
+  long long wang_separated = 0;    // Wang said disjoint (plane built)
+  long long contacts = 0;          // overlapping results
+  long long iterations = 0;        // summed over contact evaluations
+  long long corrections = 0;       // normal-correcting step applied
+  long long not_converged = 0;     // iteration cap reached (contact still used, flagged)
   long long degenerate = 0;
-  long long continued = 0;        // contacts of the previous step re-evaluated without Wang
+  long long continued = 0;    // contacts of the previous step re-evaluated without Wang
   void add(const PipelineCounters &o);
 };
 

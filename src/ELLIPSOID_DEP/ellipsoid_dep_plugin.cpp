@@ -47,8 +47,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "pair", "granular/ellipsoid",
                  "general ellipsoid contact (Wang test, cached planes, corrected Perram contact)",
                  (void *) &create<PairGranularEllipsoid, Pair>);
-  register_style(reg, lmp, handle, "fix", "pour/ellipsoid",
-                 "pour polydisperse general ellipsoids",
+  register_style(reg, lmp, handle, "fix", "pour/ellipsoid", "pour polydisperse general ellipsoids",
                  (void *) &create_with_args<FixPourEllipsoid, Fix>);
   register_style(reg, lmp, handle, "fix", "wall/gran/ellipsoid",
                  "plane walls for general ellipsoids",

@@ -42,7 +42,8 @@ std::string ForceLaw::validate() const
     if (!(kt > 0.0)) return "tangential history kt must be > 0";
     if (!(mu >= 0.0)) return "tangential history mu must be >= 0";
   }
-  if (rolling == Rolling::Constant && !(mu_roll >= 0.0)) return "rolling constant mu_r must be >= 0";
+  if (rolling == Rolling::Constant && !(mu_roll >= 0.0))
+    return "rolling constant mu_r must be >= 0";
   return {};
 }
 

@@ -44,8 +44,8 @@ using MathConst::MY_4PI3;
 using MathConst::MY_PI;
 
 static constexpr double EPSILON = 0.001;
-static constexpr double MIN_ACCEPTANCE = 1.0e-4;   // size sampler: refuse hopeless ranges
-static constexpr int NEAR_SIZE = 10;               // x, semi-axes, quaternion
+static constexpr double MIN_ACCEPTANCE = 1.0e-4;    // size sampler: refuse hopeless ranges
+static constexpr int NEAR_SIZE = 10;                // x, semi-axes, quaternion
 
 namespace {
 
@@ -94,8 +94,7 @@ FixPourEllipsoid::FixPourEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   force_reneighbor = 1;
   next_reneighbor = -1;
 
-  if (!atom->ellipsoid_flag)
-    error->all(FLERR, "Fix pour/ellipsoid requires atom_style ellipsoid");
+  if (!atom->ellipsoid_flag) error->all(FLERR, "Fix pour/ellipsoid requires atom_style ellipsoid");
   if (!atom->rmass_flag || !atom->angmom_flag)
     error->all(FLERR, "Fix pour/ellipsoid requires per-atom mass and angular momentum");
   if (atom->tag_enable == 0) error->all(FLERR, "Fix pour/ellipsoid requires atom IDs");
@@ -156,16 +155,16 @@ FixPourEllipsoid::FixPourEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   rc = 0.5 * (xhi - xlo);
   if (xlo < domain->boxlo[0] || xhi > domain->boxhi[0] || ylo < domain->boxlo[1] ||
       yhi > domain->boxhi[1] || zlo < domain->boxlo[2] || zhi > domain->boxhi[2])
-    error->all(FLERR, "Fix pour/ellipsoid region {} extends outside the simulation box",
-               idregion);
+    error->all(FLERR, "Fix pour/ellipsoid region {} extends outside the simulation box", idregion);
   if (!(xhi > xlo && yhi > ylo && zhi > zlo))
     error->all(FLERR, "Fix pour/ellipsoid region {} is empty", idregion);
 
   setup_size_statistics();
   // particles are inserted with their whole bounding sphere inside the region's z range
   if (zhi - zlo < 2.0 * bounding_max)
-    error->all(FLERR, "Fix pour/ellipsoid region {} is {} high: too low for particles whose "
-                      "largest semi-axis is {} (their bounding spheres must fit in z)",
+    error->all(FLERR,
+               "Fix pour/ellipsoid region {} is {} high: too low for particles whose "
+               "largest semi-axis is {} (their bounding spheres must fit in z)",
                idregion, zhi - zlo, bounding_max);
 
   // insertions per batch from the region volume and the mean particle volume
@@ -174,9 +173,10 @@ FixPourEllipsoid::FixPourEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   const double count = volfrac * volume / mean_volume;
   nper = count > 1.0e9 ? 1000000000 : static_cast<int>(count);
   if (nper <= 0)
-    error->all(FLERR, "Fix pour/ellipsoid region {} is too small: volume {} holds no particle "
-                      "of mean volume {} at volume fraction {}", idregion, volume, mean_volume,
-               volfrac);
+    error->all(FLERR,
+               "Fix pour/ellipsoid region {} is too small: volume {} holds no particle "
+               "of mean volume {} at volume fraction {}",
+               idregion, volume, mean_volume, volfrac);
 
   // same random numbers on every rank; warm up as fix pour does
   random = new RanPark(lmp, seed);
@@ -263,8 +263,10 @@ void FixPourEllipsoid::options(int narg, char **arg)
           utils::missing_cmd_args(FLERR, "fix pour/ellipsoid size mean R delta_r D", error);
         const double mean = number(iarg + 2, "size mean R");
         if (strcmp(arg[iarg + 3], "delta_r") != 0)
-          error->all(FLERR, iarg + 3, "Fix pour/ellipsoid size mean R: expected 'delta_r', got "
-                     "'{}'", arg[iarg + 3]);
+          error->all(FLERR, iarg + 3,
+                     "Fix pour/ellipsoid size mean R: expected 'delta_r', got "
+                     "'{}'",
+                     arg[iarg + 3]);
         const double delta = number(iarg + 4, "size delta_r");
         if (!(mean > 0.0))
           error->all(FLERR, iarg + 2, "Fix pour/ellipsoid size mean R must be > 0, got {}", mean);
@@ -300,8 +302,7 @@ void FixPourEllipsoid::options(int narg, char **arg)
       eta = number(iarg + 1, "shape eta");
       zeta = number(iarg + 2, "shape zeta");
       if (!(eta >= 1.0))
-        error->all(FLERR, iarg + 1, "Fix pour/ellipsoid shape eta = a/b must be >= 1, got {}",
-                   eta);
+        error->all(FLERR, iarg + 1, "Fix pour/ellipsoid shape eta = a/b must be >= 1, got {}", eta);
       if (!(zeta >= 1.0))
         error->all(FLERR, iarg + 2, "Fix pour/ellipsoid shape zeta = b/c must be >= 1, got {}",
                    zeta);
@@ -357,11 +358,15 @@ void FixPourEllipsoid::options(int narg, char **arg)
 
   const double eta_lo = eta * (1.0 - delta_eta), zeta_lo = zeta * (1.0 - delta_zeta);
   if (eta_lo < 1.0 - 1e-12)
-    error->all(FLERR, "Fix pour/ellipsoid: eta (1 - delta_eta) = {} < 1 (a must stay the "
-                      "longest axis)", eta_lo);
+    error->all(FLERR,
+               "Fix pour/ellipsoid: eta (1 - delta_eta) = {} < 1 (a must stay the "
+               "longest axis)",
+               eta_lo);
   if (zeta_lo < 1.0 - 1e-12)
-    error->all(FLERR, "Fix pour/ellipsoid: zeta (1 - delta_zeta) = {} < 1 (c must stay the "
-                      "shortest axis)", zeta_lo);
+    error->all(FLERR,
+               "Fix pour/ellipsoid: zeta (1 - delta_zeta) = {} < 1 (c must stay the "
+               "shortest axis)",
+               zeta_lo);
 }
 
 /* ----------------------------------------------------------------------
@@ -376,19 +381,23 @@ void FixPourEllipsoid::setup_size_statistics()
     mean_volume = MY_4PI3 * rmin * rmin * rmin;
   } else {
     const double span = rmax - rmin;
-    const double norm = beta_weighted_integral(alpha, beta, [](double) { return 1.0; });
+    const double norm = beta_weighted_integral(alpha, beta, [](double) {
+      return 1.0;
+    });
     // E_V[(rmin/r)^3]: the acceptance; E_n[r^3] = 1 / E_V[r^-3]
-    const double inv3 =
-        beta_weighted_integral(alpha, beta, [&](double x) {
-          const double r = rmin + span * x;
-          return 1.0 / (r * r * r);
-        }) / norm;
+    const double inv3 = beta_weighted_integral(alpha, beta,
+                                               [&](double x) {
+                                                 const double r = rmin + span * x;
+                                                 return 1.0 / (r * r * r);
+                                               }) /
+        norm;
     acceptance = rmin * rmin * rmin * inv3;
     mean_volume = MY_4PI3 / inv3;
     if (acceptance < MIN_ACCEPTANCE)
-      error->all(FLERR, "Fix pour/ellipsoid size range rmin {} rmax {} is too wide for the exact "
-                        "size sampler (acceptance {:.3g} < {}); raise rmin", rmin, rmax,
-                 acceptance, MIN_ACCEPTANCE);
+      error->all(FLERR,
+                 "Fix pour/ellipsoid size range rmin {} rmax {} is too wide for the exact "
+                 "size sampler (acceptance {:.3g} < {}); raise rmin",
+                 rmin, rmax, acceptance, MIN_ACCEPTANCE);
   }
   const double eta_max = eta * (1.0 + delta_eta), zeta_max = zeta * (1.0 + delta_zeta);
   // a = r eta^(2/3) zeta^(1/3) grows with r, eta and zeta
@@ -402,8 +411,9 @@ void FixPourEllipsoid::setup_size_statistics()
   const double mass_max = density * MY_4PI3 * rmax * rmax * rmax;
   if (!std::isnormal(mass_min) || !std::isnormal(mass_min * c_min * c_min) ||
       !std::isnormal(mean_volume) || !std::isfinite(mass_max * bounding_max * bounding_max))
-    error->all(FLERR, "Fix pour/ellipsoid size and density give masses or moments of inertia "
-                      "that are not representable (rmin {} rmax {} density {}); use other units",
+    error->all(FLERR,
+               "Fix pour/ellipsoid size and density give masses or moments of inertia "
+               "that are not representable (rmin {} rmax {} density {}); use other units",
                rmin, rmax, density);
 }
 
@@ -419,8 +429,9 @@ void FixPourEllipsoid::init()
   auto fixlist = modify->get_fix_by_style("^gravity");
   if (fixlist.size() > 1) error->all(FLERR, "Fix pour/ellipsoid needs at most one fix gravity");
   if (fixlist.empty() && every == 0)
-    error->all(FLERR, "Fix pour/ellipsoid needs a fix gravity to time its insertions, or the "
-                      "keyword 'every'");
+    error->all(FLERR,
+               "Fix pour/ellipsoid needs a fix gravity to time its insertions, or the "
+               "keyword 'every'");
   double gnew = 0.0;
   if (!fixlist.empty()) {
     int dim = 0;
@@ -432,8 +443,9 @@ void FixPourEllipsoid::init()
     gnew = -g * force->ftm2v;
   }
   if (every == 0 && !(gnew < 0.0))
-    error->all(FLERR, "Fix pour/ellipsoid needs a non-zero constant gravity, or the keyword "
-                      "'every'");
+    error->all(FLERR,
+               "Fix pour/ellipsoid needs a non-zero constant gravity, or the keyword "
+               "'every'");
 
   if (!initialized) {
     initialized = 1;
@@ -444,8 +456,7 @@ void FixPourEllipsoid::init()
       // time to fall from the top of the (moving) region to its bottom, as in fix pour
       const double v_relative = vz - rate;
       const double delta = zhi - zlo;
-      const double t =
-          (-v_relative - sqrt(v_relative * v_relative - 2.0 * grav * delta)) / grav;
+      const double t = (-v_relative - sqrt(v_relative * v_relative - 2.0 * grav * delta)) / grav;
       nfreq = MAX(1, static_cast<int>(std::lround(t / update->dt)));
     }
     nfirst = update->ntimestep + 1;
@@ -610,8 +621,8 @@ void FixPourEllipsoid::sample_quat(double *quat)
   quat[1] = s1 * sin(MY_2PI * u2);
   quat[2] = s1 * cos(MY_2PI * u2);
   quat[3] = s2 * sin(MY_2PI * u3);
-  const double norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] +
-                           quat[3] * quat[3]);
+  const double norm =
+      sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
   for (int k = 0; k < 4; k++) quat[k] /= norm;
 }
 
@@ -648,7 +659,7 @@ void FixPourEllipsoid::pre_exchange()
     if (!near_region(atom->x[i], bound)) continue;
     const double *q = atoms.quat(i);
     const double row[NEAR_SIZE] = {atom->x[i][0], atom->x[i][1], atom->x[i][2], s[0], s[1],
-                                   s[2], q[0], q[1], q[2], q[3]};
+                                   s[2],          q[0],          q[1],          q[2], q[3]};
     mine.insert(mine.end(), row, row + NEAR_SIZE);
   }
   int nmine = static_cast<int>(mine.size());
@@ -703,8 +714,8 @@ void FixPourEllipsoid::pre_exchange()
     for (int attempt = 0; attempt < maxattempt; attempt++) {
       xyz_random(h, coord);
       sample_quat(quat);
-      cand = make_ellipsoid(Vec3(coord[0], coord[1], coord[2]), quat,
-                            Vec3(axes[0], axes[1], axes[2]));
+      cand =
+          make_ellipsoid(Vec3(coord[0], coord[1], coord[2]), quat, Vec3(axes[0], axes[1], axes[2]));
       if (!overlaps(cand)) {
         success = true;
         break;
@@ -762,9 +773,10 @@ void FixPourEllipsoid::pre_exchange()
   ninserted += nsuccess;
   nfailed += batch_failed;
   if (batch_failed && me == 0)
-    error->warning(FLERR, "Fix pour/ellipsoid: {} of {} insertions failed at step {} (no free "
-                          "place in {} attempts)", batch_failed, nnew, update->ntimestep,
-                   maxattempt);
+    error->warning(FLERR,
+                   "Fix pour/ellipsoid: {} of {} insertions failed at step {} (no free "
+                   "place in {} attempts)",
+                   batch_failed, nnew, update->ntimestep, maxattempt);
 
   if (nsuccess) {
     atom->natoms += nsuccess;

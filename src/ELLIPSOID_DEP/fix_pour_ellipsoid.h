@@ -34,9 +34,9 @@ class FixPourEllipsoid : public Fix {
   void *extract(const char *, int &) override;
 
   // --- sampling, public for the unit tests through the fix's own parameters ---
-  double sample_size();                 // r from n(r) ~ V(r) / r^3
+  double sample_size();                              // r from n(r) ~ V(r) / r^3
   void sample_shape(double r, double *semi_axes);    // (a, b, c) with a >= b >= c
-  void sample_quat(double *quat);       // uniform on SO(3)
+  void sample_quat(double *quat);                    // uniform on SO(3)
 
  private:
   int ninsert, ntype, seed;
@@ -58,7 +58,7 @@ class FixPourEllipsoid : public Fix {
   double volfrac;
   int maxattempt;
   double rate, vxlo, vxhi, vylo, vyhi, vz;
-  int every;              // 0: from gravity like fix pour
+  int every;    // 0: from gravity like fix pour
   double grav;
   int nper, nfreq;
   bigint nfirst, next_insert;

@@ -32,8 +32,7 @@ using namespace EllipsoidDep;
 ------------------------------------------------------------------------- */
 
 FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true),
-    force_flag(0)
+    Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true), force_flag(0)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid", error);
   if (!atom->ellipsoid_flag)
@@ -50,18 +49,24 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   // walls
   int iarg = 3 + used;
   if (iarg >= narg)
-    error->all(FLERR, "Fix wall/gran/ellipsoid needs at least one wall (xplane, yplane or "
-                      "zplane lo hi) after the force law");
+    error->all(FLERR,
+               "Fix wall/gran/ellipsoid needs at least one wall (xplane, yplane or "
+               "zplane lo hi) after the force law");
   bool seen[3] = {false, false, false};
   while (iarg < narg) {
     const std::string word = arg[iarg];
     int dim = -1;
-    if (word == "xplane") dim = 0;
-    else if (word == "yplane") dim = 1;
-    else if (word == "zplane") dim = 2;
+    if (word == "xplane")
+      dim = 0;
+    else if (word == "yplane")
+      dim = 1;
+    else if (word == "zplane")
+      dim = 2;
     if (dim < 0)
-      error->all(FLERR, iarg, "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane or zplane, or a force-law word)", word);
+      error->all(FLERR, iarg,
+                 "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
+                 "yplane or zplane, or a force-law word)",
+                 word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
     if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
@@ -72,8 +77,10 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
       const char *value = arg[iarg + 1 + k];
       if (strcmp(value, "NULL") == 0) continue;
       if (!utils::is_double(value))
-        error->all(FLERR, iarg + 1 + k, "Fix wall/gran/ellipsoid {} {}: expected a number or "
-                   "NULL, got '{}'", word, k == 0 ? "lo" : "hi", value);
+        error->all(FLERR, iarg + 1 + k,
+                   "Fix wall/gran/ellipsoid {} {}: expected a number or "
+                   "NULL, got '{}'",
+                   word, k == 0 ? "lo" : "hi", value);
       Wall w;
       w.dim = dim;
       w.side = k == 0 ? -1 : 1;
@@ -86,8 +93,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     const char *lo = arg[iarg + 1], *hi = arg[iarg + 2];
     if (strcmp(lo, "NULL") != 0 && strcmp(hi, "NULL") != 0 &&
         !(utils::numeric(FLERR, lo, false, lmp) < utils::numeric(FLERR, hi, false, lmp)))
-      error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid {}: lo {} must be below hi {}", word,
-                 lo, hi);
+      error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid {}: lo {} must be below hi {}", word, lo,
+                 hi);
     iarg += 3;
   }
   if (walls.empty())
@@ -170,11 +177,15 @@ void FixWallGranEllipsoid::setup(int vflag)
   double all[2];
   MPI_Allreduce(counts, all, 2, MPI_DOUBLE, MPI_SUM, world);
   if (all[0] > 0.0)
-    error->all(FLERR, "Fix wall/gran/ellipsoid: {:.0f} particle centre(s) lie on the solid side "
-                      "of a wall", all[0]);
+    error->all(FLERR,
+               "Fix wall/gran/ellipsoid: {:.0f} particle centre(s) lie on the solid side "
+               "of a wall",
+               all[0]);
   if (all[1] > 0.0 && comm->me == 0)
-    error->warning(FLERR, "Fix wall/gran/ellipsoid: {:.0f} particle(s) overlap a wall by more "
-                          "than half their smallest semi-axis at setup", all[1]);
+    error->warning(FLERR,
+                   "Fix wall/gran/ellipsoid: {:.0f} particle(s) overlap a wall by more "
+                   "than half their smallest semi-axis at setup",
+                   all[1]);
 
   // setup forces must not advance the tangential history
   history_update = false;

@@ -39,20 +39,20 @@ class FixWallGranEllipsoid : public Fix {
 
  private:
   struct Wall {
-    int dim;          // 0, 1, 2 = x, y, z
-    int side;         // -1: lower wall (solid below), +1: upper wall (solid above)
-    double coord;     // position of the plane
+    int dim;                      // 0, 1, 2 = x, y, z
+    int side;                     // -1: lower wall (solid below), +1: upper wall (solid above)
+    double coord;                 // position of the plane
     EllipsoidDep::Vec3 normal;    // unit, into the particle region
-    double offset;    // solid half-space {x : normal.x <= offset}
+    double offset;                // solid half-space {x : normal.x <= offset}
   };
   std::vector<Wall> walls;
   EllipsoidDep::ForceLaw law;
-  int size_history;          // 3 per wall when the law keeps a tangential history, else 0
-  double **history_one;      // per atom, per wall
+  int size_history;        // 3 per wall when the law keeps a tangential history, else 0
+  double **history_one;    // per atom, per wall
   bool history_update;
 
-  std::vector<double> wall_force;       // local sums, 3 per wall
-  std::vector<double> wall_force_all;   // summed over ranks
+  std::vector<double> wall_force;        // local sums, 3 per wall
+  std::vector<double> wall_force_all;    // summed over ranks
   int force_flag;
 
   void wall_forces();

@@ -61,6 +61,7 @@ void EllipsoidAtoms::omega(int i, double *w) const
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
 {
   const double *s = shape(i);
-  return EllipsoidDep::make_ellipsoid(EllipsoidDep::Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]),
-                                      quat(i), EllipsoidDep::Vec3(s[0], s[1], s[2]));
+  return EllipsoidDep::make_ellipsoid(
+      EllipsoidDep::Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]), quat(i),
+      EllipsoidDep::Vec3(s[0], s[1], s[2]));
 }

@@ -18,11 +18,11 @@ class EllipsoidAtoms {
  public:
   explicit EllipsoidAtoms(Atom *atom);
 
-  bool has_shape(int i) const;           // atom i carries ellipsoid bonus data
-  const double *shape(int i) const;      // semi-axes along the body axes
-  const double *quat(int i) const;       // (w, x, y, z), body -> box
+  bool has_shape(int i) const;                   // atom i carries ellipsoid bonus data
+  const double *shape(int i) const;              // semi-axes along the body axes
+  const double *quat(int i) const;               // (w, x, y, z), body -> box
   void inertia(int i, double *moments) const;    // principal moments (body frame)
-  void omega(int i, double *w) const;    // angular velocity (box frame)
+  void omega(int i, double *w) const;            // angular velocity (box frame)
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
 
   Atom *atom;

@@ -56,8 +56,8 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   for (double &c : counters_global) c = 0.0;
 
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
-  fix_dummy = dynamic_cast<FixDummy *>(
-      modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
+  fix_dummy =
+      dynamic_cast<FixDummy *>(modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
 }
 
 /* ----------------------------------------------------------------------
@@ -66,7 +66,8 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
 
 PairGranularEllipsoid *PairGranularEllipsoid::find(LAMMPS *lmp, const char *who)
 {
-  auto *pair = dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
+  auto *pair =
+      dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
   if (!pair) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
   return pair;
 }
@@ -186,8 +187,7 @@ void PairGranularEllipsoid::coeff(int narg, char **arg)
   const int used = parse_force_law(words, law, message, material_lookup(lmp));
   if (used < 0) error->all(FLERR, "pair_coeff granular/ellipsoid: {}", message);
   if (used != static_cast<int>(words.size()))
-    error->all(FLERR, used + 2, "Unknown pair_coeff granular/ellipsoid keyword '{}'",
-               words[used]);
+    error->all(FLERR, used + 2, "Unknown pair_coeff granular/ellipsoid keyword '{}'", words[used]);
 
   const int index = add_law(law);
   int count = 0;
@@ -209,12 +209,15 @@ void PairGranularEllipsoid::init_style()
   if (!atom->rmass_flag || !atom->angmom_flag || !atom->torque_flag)
     error->all(FLERR, "Pair granular/ellipsoid requires per-atom mass, angmom and torque");
   if (comm->ghost_velocity == 0)
-    error->all(FLERR, "Pair granular/ellipsoid requires ghost atoms store velocity: "
-                      "use comm_modify vel yes");
+    error->all(FLERR,
+               "Pair granular/ellipsoid requires ghost atoms store velocity: "
+               "use comm_modify vel yes");
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->ellipsoid[i] < 0)
-      error->one(FLERR, "Pair granular/ellipsoid requires every atom to be an ellipsoid "
-                        "(atom {} has no shape: use set ... shape)", atom->tag[i]);
+      error->one(FLERR,
+                 "Pair granular/ellipsoid requires every atom to be an ellipsoid "
+                 "(atom {} has no shape: use set ... shape)",
+                 atom->tag[i]);
 
   // A plain half list with the bounding-sphere cutoff (atom_style ellipsoid has no radius).
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
@@ -226,16 +229,17 @@ void PairGranularEllipsoid::init_style()
 
   if (!fix_history) {
     fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
-        HISTORY_DUMMY_ID,
-        fmt::format("{} all NEIGH_HISTORY {}", HISTORY_FIX_ID, size_history), 1));
+        HISTORY_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY {}", HISTORY_FIX_ID, size_history), 1));
     fix_history->pair = this;
     fix_dummy = nullptr;
   } else {
     fix_history = dynamic_cast<FixNeighHistory *>(modify->get_fix_by_id(HISTORY_FIX_ID));
     if (!fix_history) error->all(FLERR, "Could not find pair granular/ellipsoid history fix");
     if (fix_history->get_dnum() != size_history)
-      error->all(FLERR, "Pair granular/ellipsoid: the tangential models changed between runs; "
-                        "history size {} != {}", fix_history->get_dnum(), size_history);
+      error->all(FLERR,
+                 "Pair granular/ellipsoid: the tangential models changed between runs; "
+                 "history size {} != {}",
+                 fix_history->get_dnum(), size_history);
   }
 
   auto frozen = modify->get_fix_by_style("^freeze");
@@ -272,9 +276,13 @@ double PairGranularEllipsoid::init_one(int i, int j)
     const ForceLaw &a = laws[law_index[i][i]];
     const ForceLaw &b = laws[law_index[j][j]];
     if (a.normal != b.normal || a.tangential != b.tangential || a.rolling != b.rolling)
-      error->all(FLERR, "Pair granular/ellipsoid: types {} and {} use different models; set "
-                        "pair_coeff {} {} explicitly", i, j, i, j);
-    auto geom = [](double x, double y) { return std::sqrt(x * y); };
+      error->all(FLERR,
+                 "Pair granular/ellipsoid: types {} and {} use different models; set "
+                 "pair_coeff {} {} explicitly",
+                 i, j, i, j);
+    auto geom = [](double x, double y) {
+      return std::sqrt(x * y);
+    };
     ForceLaw mixed = a;
     mixed.kn = geom(a.kn, b.kn);
     mixed.damping = geom(a.damping, b.damping);
@@ -300,8 +308,9 @@ double PairGranularEllipsoid::init_one(int i, int j)
   if (rj <= 0.0) rj = largest;
   double cut = ri + rj;
   if (cut <= 0.0)
-    error->all(FLERR, "Pair granular/ellipsoid cannot size its cutoff: no ellipsoid exists and "
-                      "no fix pour/ellipsoid announces one");
+    error->all(FLERR,
+               "Pair granular/ellipsoid cannot size its cutoff: no ellipsoid exists and "
+               "no fix pour/ellipsoid announces one");
   return cut;
 }
 
@@ -495,10 +504,9 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
 void PairGranularEllipsoid::local_counters(double *out) const
 {
   const long long values[NUM_COUNTERS] = {
-      counters.pairs,         counters.plane_hits,       counters.wang_calls,
-      counters.contacts,      counters.iterations,       counters.corrections,
-      counters.not_converged, counters.bounding_rejects, counters.degenerate,
-      counters.continued};
+      counters.pairs,      counters.plane_hits,  counters.wang_calls,    counters.contacts,
+      counters.iterations, counters.corrections, counters.not_converged, counters.bounding_rejects,
+      counters.degenerate, counters.continued};
   for (int k = 0; k < NUM_COUNTERS; k++) out[k] = static_cast<double>(values[k]);
 }
 
@@ -532,12 +540,15 @@ void PairGranularEllipsoid::finish()
                  "contacts\n",
                  c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6], c[8], c[9]);
   if (c[6] > 0.0)
-    error->warning(FLERR, "granular/ellipsoid: {:.0f} contact evaluations did not converge "
-                          "within {} iterations (used with their last iterate)",
+    error->warning(FLERR,
+                   "granular/ellipsoid: {:.0f} contact evaluations did not converge "
+                   "within {} iterations (used with their last iterate)",
                    c[6], pipeline.contact.max_iterations);
   if (c[8] > 0.0)
-    error->warning(FLERR, "granular/ellipsoid: {:.0f} pair evaluations had degenerate input "
-                          "(non-finite positions or shapes) and gave no force", c[8]);
+    error->warning(FLERR,
+                   "granular/ellipsoid: {:.0f} pair evaluations had degenerate input "
+                   "(non-finite positions or shapes) and gave no force",
+                   c[8]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -559,8 +570,7 @@ void PairGranularEllipsoid::read_restart_settings(FILE *fp)
   if (me == 0) {
     utils::sfread(FLERR, &pipeline.contact.tolerance, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &pipeline.contact.max_iterations, sizeof(int), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &pipeline.contact.correction_angle, sizeof(double), 1, fp, nullptr,
-                  error);
+    utils::sfread(FLERR, &pipeline.contact.correction_angle, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &pipeline.contact.wang_band, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &planes, sizeof(int), 1, fp, nullptr, error);
     utils::sfread(FLERR, &wang, sizeof(int), 1, fp, nullptr, error);

@@ -20,11 +20,11 @@ class PairGranularEllipsoid : public Pair {
  public:
   // One contact of the last force evaluation, for the computes (never a radius-sum guess).
   struct Contact {
-    int i, j;                      // local indices (j may be a ghost)
-    double normal[3];              // unit, from i to j
-    double point[3];               // contact point, box coordinates
+    int i, j;            // local indices (j may be a ghost)
+    double normal[3];    // unit, from i to j
+    double point[3];     // contact point, box coordinates
     double overlap;
-    double force[3];               // total force on i
+    double force[3];    // total force on i
   };
 
   PairGranularEllipsoid(class LAMMPS *);
@@ -74,7 +74,7 @@ class PairGranularEllipsoid : public Pair {
 
   class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
-  int size_history;     // PAIR_CACHE_SIZE + tangential history (3) when any law needs it
+  int size_history;    // PAIR_CACHE_SIZE + tangential history (3) when any law needs it
   int tangential_offset;
   bool history_update;
   int freeze_group_bit;

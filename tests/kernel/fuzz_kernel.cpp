@@ -17,7 +17,7 @@ namespace {
 struct Reader {
   const uint8_t *p;
   size_t n;
-  double unit()   // in [0, 1)
+  double unit()    // in [0, 1)
   {
     uint32_t v = 0;
     for (int i = 0; i < 4; ++i) v = (v << 8) | (n ? (--n, *p++) : 0);
@@ -58,9 +58,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t nbytes)
     if (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + std::fabs(q[3]) < 1e-3) q[0] = 1;
     Vec3 ax;
     for (int i = 0; i < 3; ++i) ax[i] = std::pow(10.0, 3 * r.unit() - 2);
-    const double shape = r.unit();   // sometimes spheres / near-spheres / coincident
-    if (shape < 0.1) ax = Vec3(ax[0], ax[0], ax[0]);
-    else if (shape < 0.15) ax = Vec3(ax[0], ax[0], ax[0] * (1 + 1e-12));
+    const double shape = r.unit();    // sometimes spheres / near-spheres / coincident
+    if (shape < 0.1)
+      ax = Vec3(ax[0], ax[0], ax[0]);
+    else if (shape < 0.15)
+      ax = Vec3(ax[0], ax[0], ax[0] * (1 + 1e-12));
     e[k] = make_ellipsoid(c, q, ax);
   }
   if (r.unit() < 0.05) e[1] = make_ellipsoid(e[0].center, e[1].rotation, e[1].semi_axes);

@@ -19,18 +19,27 @@ using M3 = std::array<std::array<LD, 3>, 3>;
 
 struct Body {
   V3 c;
-  M3 m;   // R diag(a^2) R^T
+  M3 m;    // R diag(a^2) R^T
 };
 
-inline LD dot(const V3 &a, const V3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline LD dot(const V3 &a, const V3 &b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline V3 mul(const M3 &m, const V3 &v)
 {
   V3 r;
   for (int i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
   return r;
 }
-inline V3 axpy(LD s, const V3 &x, const V3 &y) { return {s * x[0] + y[0], s * x[1] + y[1], s * x[2] + y[2]}; }
-inline LD norm(const V3 &v) { return std::sqrt(dot(v, v)); }
+inline V3 axpy(LD s, const V3 &x, const V3 &y)
+{
+  return {s * x[0] + y[0], s * x[1] + y[1], s * x[2] + y[2]};
+}
+inline LD norm(const V3 &v)
+{
+  return std::sqrt(dot(v, v));
+}
 inline V3 unit(const V3 &v)
 {
   const LD n = norm(v);
@@ -45,13 +54,17 @@ inline Body make_body(const double c[3], const double rot[3][3], const double ax
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       LD s = 0;
-      for (int k = 0; k < 3; ++k) s += (LD) rot[i][k] * (LD) axes[k] * (LD) axes[k] * (LD) rot[j][k];
+      for (int k = 0; k < 3; ++k)
+        s += (LD) rot[i][k] * (LD) axes[k] * (LD) axes[k] * (LD) rot[j][k];
       b.m[i][j] = s;
     }
   return b;
 }
 
-inline LD h(const Body &b, const V3 &n) { return std::sqrt(dot(n, mul(b.m, n))); }
+inline LD h(const Body &b, const V3 &n)
+{
+  return std::sqrt(dot(n, mul(b.m, n)));
+}
 
 inline LD gap(const Body &a, const Body &b, const V3 &n)
 {
@@ -161,8 +174,9 @@ inline Result global_min(const Body &a, const Body &b, int samples = 6000)
     const LD d = gap(a, b, n);
     best.push_back({d, n});
   }
-  std::partial_sort(best.begin(), best.begin() + 8, best.end(),
-                    [](const auto &x, const auto &y) { return x.first < y.first; });
+  std::partial_sort(best.begin(), best.begin() + 8, best.end(), [](const auto &x, const auto &y) {
+    return x.first < y.first;
+  });
   Result r{best[0].second, best[0].first};
   for (int i = 0; i < 8; ++i) {
     const Result q = refine(a, b, best[i].second);

@@ -27,7 +27,10 @@ Oracle::Body body(const Ellipsoid &e)
   return Oracle::make_body(c, r, ax);
 }
 
-Oracle::V3 ov(const Vec3 &v) { return {v[0], v[1], v[2]}; }
+Oracle::V3 ov(const Vec3 &v)
+{
+  return {v[0], v[1], v[2]};
+}
 
 Mat3 random_rotation(std::mt19937_64 &rng)
 {
@@ -80,7 +83,7 @@ Ellipsoid place_b(const Ellipsoid &a, const Mat3 &rb, const Vec3 &axes_b, const 
 struct Case {
   std::string label;
   Ellipsoid a, b;
-  double delta;   // constructed d(n) / smaller semi-axis
+  double delta;    // constructed d(n) / smaller semi-axis
   Vec3 n;
   double size;    // smaller semi-axis of the pair
 };
@@ -100,8 +103,8 @@ std::vector<Case> make_cases(const std::vector<double> &rel, int rotations, unsi
         c.b = place_b(c.a, random_rotation(rng), s.b, c.n, r * size);
         c.delta = r;
         c.size = size;
-        c.label = std::string(s.name) + " delta/size=" + std::to_string(r) + " rot#" +
-            std::to_string(k);
+        c.label =
+            std::string(s.name) + " delta/size=" + std::to_string(r) + " rot#" + std::to_string(k);
         out.push_back(c);
       }
   return out;
@@ -204,7 +207,8 @@ TEST(Contact, SwapSymmetry)
     const auto g2 = ellipsoid_contact(c.b, c.a, st);
     ASSERT_EQ(g1.status, g2.status);
     EXPECT_LT((g1.normal + g2.normal).norm(), 1e-8);
-    EXPECT_NEAR(g1.overlap, g2.overlap, 1e-8 * std::fabs(g1.overlap) + 1e-14 * (c.a.bounding_radius + c.b.bounding_radius));
+    EXPECT_NEAR(g1.overlap, g2.overlap,
+                1e-8 * std::fabs(g1.overlap) + 1e-14 * (c.a.bounding_radius + c.b.bounding_radius));
     EXPECT_LT((g1.point - g2.point).norm(), 1e-8 * c.size);
     EXPECT_NEAR(g1.effective_radius, g2.effective_radius, 1e-8 * g1.effective_radius);
   }
@@ -221,7 +225,8 @@ TEST(Contact, DisjointGivesDistance)
     ASSERT_EQ(g.status, Status::Separated);
     EXPECT_LT((double) Oracle::angle(ov(g.normal), o.n), 1e-8);
     EXPECT_NEAR(g.overlap, (double) o.d,
-                1e-8 * std::fabs((double) o.d) + 1e-14 * (c.a.bounding_radius + c.b.bounding_radius));
+                1e-8 * std::fabs((double) o.d) +
+                    1e-14 * (c.a.bounding_radius + c.b.bounding_radius));
   }
 }
 
@@ -257,17 +262,21 @@ TEST(Contact, InsideAndCoincident)
     for (int k = 0; k < 4; ++k) {
       const Vec3 ca(1, 2, 3);
       const Ellipsoid a = make_ellipsoid(ca, random_rotation(rng), c.big);
-      const Ellipsoid b = make_ellipsoid(ca + a.rotation * c.offset, random_rotation(rng), c.small);   // offset in A's body frame
+      const Ellipsoid b = make_ellipsoid(ca + a.rotation * c.offset, random_rotation(rng),
+                                         c.small);    // offset in A's body frame
       for (int swap = 0; swap < 2; ++swap) {
         const Ellipsoid &x = swap ? b : a, &y = swap ? a : b;
         const auto g = ellipsoid_contact(x, y, st);
-        ASSERT_EQ(g.status, Status::Overlapping) << g.overlap << " k=" << k << " swap=" << swap << " big=" << c.big.transpose();
+        ASSERT_EQ(g.status, Status::Overlapping)
+            << g.overlap << " k=" << k << " swap=" << swap << " big=" << c.big.transpose();
         ASSERT_TRUE(g.normal.allFinite() && std::isfinite(g.overlap));
         const auto ox = body(x), oy = body(y);
         const auto glob = Oracle::global_min(ox, oy);
         EXPECT_GE(g.overlap, (double) glob.d - 1e-12);
         const auto loc = Oracle::refine(ox, oy, ov(g.normal));
-        SCOPED_TRACE(::testing::Message() << "case big=" << c.big.transpose() << " small=" << c.small.transpose() << " swap=" << swap << " it=" << g.iterations << " st=" << int(g.status));
+        SCOPED_TRACE(::testing::Message()
+                     << "case big=" << c.big.transpose() << " small=" << c.small.transpose()
+                     << " swap=" << swap << " it=" << g.iterations << " st=" << int(g.status));
         EXPECT_LT((double) Oracle::angle(ov(g.normal), loc.n), 1e-8);
         EXPECT_NEAR(g.overlap, (double) loc.d, 1e-10 * (double) loc.d);
       }
@@ -277,9 +286,9 @@ TEST(Contact, InsideAndCoincident)
 // ---------------------------------------------------------------------------
 TEST(Wang, DecisionNeverWrong)
 {
-  const auto cases = make_cases({-1.0, -0.1, -1e-2, -1e-3, -1e-5, -1e-7, -1e-8, -1e-9, -1e-10,
-                                 -1e-11, -1e-12, 0.0, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7,
-                                 1e-5, 1e-3, 1e-2, 0.1, 0.3},
+  const auto cases = make_cases({-1.0,   -0.1,   -1e-2,  -1e-3, -1e-5, -1e-7, -1e-8, -1e-9,
+                                 -1e-10, -1e-11, -1e-12, 0.0,   1e-12, 1e-11, 1e-10, 1e-9,
+                                 1e-8,   1e-7,   1e-5,   1e-3,  1e-2,  0.1,   0.3},
                                 4, 53);
   ContactSettings st;
   int touching = 0, overlapping_disjoint = 0;
@@ -323,7 +332,8 @@ TEST(Wang, DecisionNeverWrong)
       EXPECT_TRUE(plane_separates(p, c.a, c.b));
     }
   }
-  std::printf("[wang] %d/%zu evaluations (both orders) Touching (widest |min d|/size %.3e); %d disjoint pairs "
+  std::printf("[wang] %d/%zu evaluations (both orders) Touching (widest |min d|/size %.3e); %d "
+              "disjoint pairs "
               "called Overlapping (widest gap/size %.3e)\n",
               touching, 2 * cases.size(), widest_touch, overlapping_disjoint, widest_od);
 }
@@ -356,7 +366,7 @@ TEST(Sphere, AnalyticAndGeneralPath)
     const Ellipsoid b = make_ellipsoid(ca + dist * n, random_rotation(rng), Vec3(rb, rb, rb));
     ASSERT_TRUE(a.sphere && b.sphere);
     const auto s = sphere_contact(a, b);
-    const auto e = ellipsoid_contact(a, b, st);   // dispatches to the closed form
+    const auto e = ellipsoid_contact(a, b, st);    // dispatches to the closed form
     const double dc = (b.center - a.center).norm();
     EXPECT_NEAR(s.overlap, ra + rb - dc, 1e-15 * (ra + rb));
     EXPECT_LT((s.normal - (b.center - a.center) / dc).norm(), 1e-15);
@@ -443,7 +453,7 @@ TEST(Settings, FastModeAndIterationCap)
   for (const auto &c : cases) {
     SCOPED_TRACE(c.label);
     ContactSettings fast;
-    fast.correction_angle = 1.5;   // nearly always accept the Perram-type vector
+    fast.correction_angle = 1.5;    // nearly always accept the Perram-type vector
     const auto g = ellipsoid_contact(c.a, c.b, fast);
     EXPECT_TRUE(g.normal.allFinite() && std::isfinite(g.overlap));
     if (!c.a.sphere || !c.b.sphere) { EXPECT_FALSE(g.corrected); }
@@ -471,7 +481,8 @@ TEST(Degenerate, NonFiniteAndZeroAxis)
   PipelineSettings ps;
   PipelineCounters cnt;
   double cache[PAIR_CACHE_SIZE] = {2, 0, 0, 1, 0};
-  const auto g = evaluate_pair(a, make_ellipsoid(Vec3(NAN, 0, 0), q, Vec3(1, 2, 3)), ps, cache, cnt);
+  const auto g =
+      evaluate_pair(a, make_ellipsoid(Vec3(NAN, 0, 0), q, Vec3(1, 2, 3)), ps, cache, cnt);
   EXPECT_EQ(g.status, Status::Degenerate);
   EXPECT_EQ(cnt.degenerate, 1);
   EXPECT_EQ(cache[0], 0.0);
@@ -480,7 +491,7 @@ TEST(Degenerate, NonFiniteAndZeroAxis)
 // ---------------------------------------------------------------------------
 TEST(Geometry, MakeEllipsoidAndHomogeneous)
 {
-  const double q[4] = {2, 0, 0, 2};   // not normalised: 90 deg about z
+  const double q[4] = {2, 0, 0, 2};    // not normalised: 90 deg about z
   const Ellipsoid e = make_ellipsoid(Vec3(1, 2, 3), q, Vec3(1, 2, 3));
   EXPECT_NEAR(e.rotation(1, 0), 1.0, 1e-15);
   EXPECT_LT((e.form * e.inverse_form - Mat3::Identity()).norm(), 1e-14);
@@ -526,10 +537,10 @@ TEST(Geometry, PlaneContact)
         const Vec3 x = r.center + r.rotation * r.semi_axes.cwiseProduct(s);
         lowest = std::min(lowest, n.dot(x));
       }
-    EXPECT_NEAR(c.overlap, 0.2 - lowest, 2e-4);   // sampling resolution
-    EXPECT_GE(c.overlap, 0.2 - lowest - 1e-14);   // the support is exact: never shallower
-    EXPECT_NEAR(n.dot(r.form * (c.point_a - r.center)) /
-                    (r.form * (c.point_a - r.center)).norm(), -1.0, 1e-12);
+    EXPECT_NEAR(c.overlap, 0.2 - lowest, 2e-4);    // sampling resolution
+    EXPECT_GE(c.overlap, 0.2 - lowest - 1e-14);    // the support is exact: never shallower
+    EXPECT_NEAR(n.dot(r.form * (c.point_a - r.center)) / (r.form * (c.point_a - r.center)).norm(),
+                -1.0, 1e-12);
   }
 }
 
