@@ -23,6 +23,7 @@
 #include "update.h"
 
 #include "ellipsoid_contact.h"
+#include "granular_ellipsoid_atoms.h"
 #include "pair_granular_ellipsoid.h"
 
 #include <cfloat>
@@ -197,11 +198,12 @@ void ComputePackingEllipsoid::slab_bounds(double &zlo, double &zhi, double &dmea
   const int nlocal = atom->nlocal;
   int *mask = atom->mask;
 
+  const EllipsoidAtoms atoms(atom);
   double local[2] = {0.0, 0.0};    // sum of diameters, count
   double zbot = DBL_MAX, ztop = -DBL_MAX;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const EllipsoidDep::Ellipsoid e = pair->ellipsoid_of(i);
+    const EllipsoidDep::Ellipsoid e = atoms.ellipsoid(i);
     const double d = 2.0 * std::cbrt(e.semi_axes[0] * e.semi_axes[1] * e.semi_axes[2]);
     local[0] += d;
     local[1] += 1.0;
@@ -234,9 +236,10 @@ void ComputePackingEllipsoid::slab_bounds(double &zlo, double &zhi, double &dmea
     const int nx = MAX(1, MIN(1000, static_cast<int>(domain->xprd / dmean)));
     const int ny = MAX(1, MIN(1000, static_cast<int>(domain->yprd / dmean)));
     std::vector<double> top(static_cast<size_t>(nx) * ny, -DBL_MAX), top_all(top.size());
+    const EllipsoidAtoms atoms(atom);
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const EllipsoidDep::Ellipsoid e = pair->ellipsoid_of(i);
+      const EllipsoidDep::Ellipsoid e = atoms.ellipsoid(i);
       const double h = std::sqrt(e.inverse_form(2, 2));
       int ix = static_cast<int>((atom->x[i][0] - domain->boxlo[0]) / domain->xprd * nx);
       int iy = static_cast<int>((atom->x[i][1] - domain->boxlo[1]) / domain->yprd * ny);
@@ -290,10 +293,11 @@ void ComputePackingEllipsoid::compute_vector()
   slab_bounds(zlo, zhi, dmean);
 
   // solid volume in the slab (with the images across a periodic z boundary)
+  const EllipsoidAtoms atoms(atom);
   double vsolid = 0.0;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    EllipsoidDep::Ellipsoid e = pair->ellipsoid_of(i);
+    EllipsoidDep::Ellipsoid e = atoms.ellipsoid(i);
     vsolid += EllipsoidDep::ellipsoid_slab_volume(e, zlo, zhi);
     if (domain->zperiodic) {
       const double z0 = e.center[2];

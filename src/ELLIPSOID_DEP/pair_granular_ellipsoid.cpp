@@ -316,11 +316,6 @@ double PairGranularEllipsoid::init_one(int i, int j)
 
 /* ---------------------------------------------------------------------- */
 
-Ellipsoid PairGranularEllipsoid::ellipsoid_of(int i) const
-{
-  return EllipsoidAtoms(atom).ellipsoid(i);
-}
-
 void PairGranularEllipsoid::update_shapes()
 {
   const EllipsoidAtoms atoms(atom);

@@ -53,8 +53,6 @@ class PairGranularEllipsoid : public Pair {
   const std::vector<Contact> &contacts() const { return contact_list; }
   // timestep of the force evaluation that filled contacts() (-1: never recorded)
   bigint contacts_timestep() const { return contact_step; }
-  // Geometry of atom i as the kernel sees it (for the computes and the pour's overlap check).
-  EllipsoidDep::Ellipsoid ellipsoid_of(int i) const;
   // Counters since the pair was created: this rank's, and summed over all ranks.
   void local_counters(double *out) const;
   void global_counters(double *out) const;
