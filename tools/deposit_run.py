@@ -2,23 +2,34 @@
 """Run the default ELLIPSOID_DEP deposit (examples/deposit/in.deposit) and post-process it.
 
     ./ellipsoid-dep run [--N 1000] [--np 2] [--out DIR] [--eta 1.4 --zeta 1.8 --dr 0.6]
-                        [--seed S] [--ketol 1e-4] [--no-image] [--input FILE] [--quiet]
+                        [--seed S] [--ketol 1e-4] [--checkpoint-every 5000] [--no-image]
+                        [--input FILE] [--quiet]
+    ./ellipsoid-dep run --resume DIR          # continue an interrupted run from its checkpoint
 
 Runs `mpirun -np NP $LAMMPS_BUILD/lmp -in in.deposit -var ...` in the run folder
 (default runs/deposit-<timestamp>/), streams its progress (inserted particles, kinetic energy per
 particle against the rest criterion, wall time and an estimate of the time left from the
 decay rate of the kinetic energy), then plots the histograms to PNG (matplotlib, Agg), prints
 the volume fraction and coordination number and lists the files written.
+
+Checkpoints: every --checkpoint-every steps LAMMPS writes a restart file, alternately
+checkpoint.a and checkpoint.b in the run folder, so a kill while one is being written leaves
+the other intact. The run's settings are stored in settings.json; --resume DIR continues from
+the newer complete checkpoint with those settings and records `resumed_from STEP` in
+packing.dat. The checkpoints are removed once the deposit is finished.
 The entry script sets LAMMPS_BUILD, LAMMPS_PLUGIN_PATH, LD_LIBRARY_PATH and the OpenMPI
 run-as-root variables.
 """
 import argparse
 import datetime
 import glob
+import json
 import math
 import os
 import re
+import shlex
 import shutil
+import struct
 import subprocess
 import sys
 import time
@@ -40,16 +51,77 @@ def lmp_binary():
     sys.exit("deposit_run: LAMMPS not found: run through ./ellipsoid-dep run (it sets LAMMPS_BUILD)")
 
 
-def lammps_command(args, out):
+def lammps_command(settings, out, resume_from=None, log_name="log.lammps"):
     cmd = []
-    if args.np > 1:
-        cmd = ["mpirun", "-np", str(args.np)]
-    cmd += [lmp_binary(), "-in", os.path.abspath(args.input), "-log", os.path.join(out, "log.lammps"),
-            "-nocite", "-var", "N", str(args.N), "-var", "eta", str(args.eta), "-var", "zeta",
-            str(args.zeta), "-var", "dr", str(args.dr), "-var", "seed", str(args.seed),
-            "-var", "ketol", str(args.ketol), "-var", "out", out,
-            "-var", "image", "0" if args.no_image else "1", "-var", "tangential", args.tangential]
+    if settings["np"] > 1:
+        cmd = [w.replace("{np}", str(settings["np"])) for w in shlex.split(settings["launcher"])]
+    cmd += [lmp_binary(), "-in", settings["input"], "-log", os.path.join(out, log_name),
+            "-nocite"]
+    variables = {"N": settings["N"], "eta": settings["eta"], "zeta": settings["zeta"],
+                 "dr": settings["dr"], "seed": settings["seed"], "ketol": settings["ketol"],
+                 "out": out, "image": 1 if settings["image"] else 0,
+                 "tangential": settings["tangential"],
+                 "checkpoint": settings["checkpoint_every"]}
+    if resume_from:
+        variables["resume"] = resume_from
+    for name, value in variables.items():
+        cmd += ["-var", name, str(value)]
     return cmd
+
+
+# ---- checkpoints ----------------------------------------------------------------------------
+CHECKPOINTS = ("checkpoint.a", "checkpoint.b")
+RESTART_MAGIC = b"LammpS RestartT\0"
+# flags of the restart header (enum in LAMMPS lmprestart.h) up to the time step: strings
+# (VERSION, UNITS), ints (SMALLINT, TAGINT, IMAGEINT), the size of a bigint, NTIMESTEP
+RESTART_STRING_FLAGS, RESTART_INT_FLAGS, RESTART_BIGINT_SIZE, RESTART_NTIMESTEP = \
+    (0, 4), (1, 2, 48), 3, 5
+
+
+def checkpoint_step(path):
+    """Time step of a complete LAMMPS restart file (its magic string at both ends), else None."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+            f.seek(0, os.SEEK_END)
+            if f.tell() < 2 * len(RESTART_MAGIC):
+                return None
+            f.seek(-len(RESTART_MAGIC), os.SEEK_END)
+            tail = f.read()
+    except OSError:
+        return None
+    if not head.startswith(RESTART_MAGIC) or tail != RESTART_MAGIC:
+        return None
+    pos, bigint = len(RESTART_MAGIC) + 8, 8    # after the endian flag and format revision
+    try:
+        while True:
+            (flag,) = struct.unpack_from("i", head, pos)
+            pos += 4
+            if flag in RESTART_STRING_FLAGS:
+                (n,) = struct.unpack_from("i", head, pos)
+                pos += 4 + n
+            elif flag in RESTART_INT_FLAGS or flag == RESTART_BIGINT_SIZE:
+                (value,) = struct.unpack_from("i", head, pos)
+                pos += 4
+                if flag == RESTART_BIGINT_SIZE:
+                    bigint = value
+            elif flag == RESTART_NTIMESTEP:
+                return struct.unpack_from("q" if bigint == 8 else "i", head, pos)[0]
+            else:
+                return None
+    except struct.error:
+        return None
+
+
+def newest_checkpoint(out):
+    """(path, step) of the newer complete checkpoint in the run folder, or (None, None)."""
+    found = [(checkpoint_step(os.path.join(out, name)), os.path.join(out, name))
+             for name in CHECKPOINTS]
+    found = [(step, path) for step, path in found if step is not None]
+    if not found:
+        return None, None
+    step, path = max(found)
+    return path, step
 
 
 class Eta:
@@ -78,14 +150,15 @@ class Eta:
         return el, max(0.0, (math.log(ke) - math.log(target)) / rate)
 
 
-def run_lammps(args, out):
-    cmd = lammps_command(args, out)
+def run_lammps(args, settings, out, resume_from=None, resume_step=None):
+    log_name = "log.lammps" if resume_from is None else "log.resume-%d.lammps" % resume_step
+    cmd = lammps_command(settings, out, resume_from, log_name)
     env = dict(os.environ)
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     env.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
     print("deposit_run: " + " ".join(cmd), flush=True)
-    screen = open(os.path.join(out, "screen.txt"), "w")
+    screen = open(os.path.join(out, "screen.txt"), "w" if resume_from is None else "a")
     eta = Eta()
     result = None
     t0 = time.time()
@@ -116,7 +189,8 @@ def run_lammps(args, out):
     if proc.returncode != 0:
         tail = open(os.path.join(out, "screen.txt")).read().splitlines()[-25:]
         print("\n".join(tail))
-        sys.exit("deposit_run: LAMMPS failed (exit %d); log in %s" % (proc.returncode, out))
+        sys.exit("deposit_run: LAMMPS failed (exit %d); log in %s" % (proc.returncode, out)
+                 + ("; continue with --resume %s" % out if newest_checkpoint(out)[0] else ""))
     return result, wall
 
 
@@ -180,31 +254,124 @@ def plot_histograms(out, title):
     return written
 
 
-def main(argv=None):
+# what a run is: stored in its folder, so that --resume continues the same deposit
+DEFAULTS = {"N": 1000, "eta": 1.4, "zeta": 1.8, "dr": 0.6, "seed": 4928,
+            "tangential": "history 2.0e3 0.5", "ketol": 1e-4, "input": DEFAULT_INPUT,
+            "checkpoint_every": 5000, "image": True}
+SETTINGS_FILE = "settings.json"
+
+
+def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--np", type=int, default=int(os.environ.get("NP", 2)), help="MPI ranks (default 2)")
-    ap.add_argument("--N", type=int, default=1000, help="number of particles (default 1000)")
+    ap.add_argument("--launcher", default="mpirun -np {np}",
+                    help='MPI launcher when np > 1, {np} = ranks (default "mpirun -np {np}"; '
+                         'on Slurm e.g. "srun -n {np}")')
+    ap.add_argument("--N", type=int, help="number of particles (default 1000)")
     ap.add_argument("--out", default=None, help="run folder (default runs/deposit-<timestamp>/)")
-    ap.add_argument("--eta", type=float, default=1.4)
-    ap.add_argument("--zeta", type=float, default=1.8)
-    ap.add_argument("--dr", type=float, default=0.6, help="size polydispersity delta_r")
-    ap.add_argument("--seed", type=int, default=4928)
-    ap.add_argument("--tangential", default="history 2.0e3 0.5",
+    ap.add_argument("--eta", type=float, help="a/b (default 1.4)")
+    ap.add_argument("--zeta", type=float, help="b/c (default 1.8)")
+    ap.add_argument("--dr", type=float, help="size polydispersity delta_r (default 0.6)")
+    ap.add_argument("--seed", type=int, help="random seed of the pour (default 4928)")
+    ap.add_argument("--tangential",
                     help='tangential law words (default "history 2.0e3 0.5"; the paper\'s '
                          'viscous law: "viscous 0.5")')
-    ap.add_argument("--ketol", type=float, default=1e-4,
+    ap.add_argument("--ketol", type=float,
                     help="rest criterion: KE per particle / (m g d) (default 1e-4)")
-    ap.add_argument("--input", default=DEFAULT_INPUT, help="LAMMPS input (default in.deposit)")
-    ap.add_argument("--no-image", action="store_true", help="skip the dump image picture")
+    ap.add_argument("--input", help="LAMMPS input (default in.deposit)")
+    ap.add_argument("--checkpoint-every", type=int, dest="checkpoint_every", metavar="STEPS",
+                    help="steps between two restart checkpoints, 0 = none (default 5000; "
+                         "a multiple of the input's chunk of 1000 steps keeps the rest checks "
+                         "of a resumed run on the same steps)")
+    ap.add_argument("--no-image", dest="image", action="store_const", const=False,
+                    help="skip the dump image picture")
+    ap.add_argument("--resume", metavar="DIR",
+                    help="continue the interrupted run in DIR from its newer complete "
+                         "checkpoint, with the settings stored there")
+    ap.add_argument("--continue", dest="cont", action="store_true",
+                    help="with --out DIR: resume DIR's run if it holds a checkpoint of a run "
+                         "with these settings, else start afresh (for workflows)")
     ap.add_argument("--no-plots", action="store_true", help="skip the matplotlib PNGs")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
+    if args.resume and (args.out or args.cont):
+        ap.error("--resume DIR is the run folder: give neither --out nor --continue")
+    if args.cont and not args.out:
+        ap.error("--continue needs --out DIR")
+    return args
 
-    out = args.out or os.path.join(os.getcwd(), "runs",
-                                   "deposit-" + datetime.datetime.now().strftime("%Y%m%d-%H%M%S"))
-    out = os.path.abspath(out)
-    os.makedirs(out, exist_ok=True)
-    result, wall = run_lammps(args, out)
+
+def requested_settings(args):
+    """Settings given on the command line, over the defaults."""
+    given = {k: getattr(args, k) for k in DEFAULTS if getattr(args, k) is not None}
+    settings = dict(DEFAULTS, **given)
+    settings["input"] = os.path.abspath(settings["input"])
+    return settings, given
+
+
+def read_settings(out):
+    path = os.path.join(out, SETTINGS_FILE)
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return json.load(f)
+
+
+def write_settings(out, settings):
+    with open(os.path.join(out, SETTINGS_FILE), "w") as f:
+        json.dump({k: settings[k] for k in DEFAULTS}, f, indent=1, sort_keys=True)
+        f.write("\n")
+
+
+def start_fresh(out):
+    """Remove what an earlier run left in the folder that the new one would not overwrite."""
+    for name in CHECKPOINTS + ("packing.dat",):
+        if os.path.exists(os.path.join(out, name)):
+            os.remove(os.path.join(out, name))
+
+
+def plan(args):
+    """(run folder, settings, checkpoint to resume from or None, its step); changes nothing."""
+    settings, given = requested_settings(args)
+    if args.resume:
+        out = os.path.abspath(args.resume)
+        stored = read_settings(out)
+        if stored is None:
+            sys.exit("deposit_run: %s has no %s: not a run folder" % (out, SETTINGS_FILE))
+        changed = {k: v for k, v in given.items()
+                   if (os.path.abspath(v) if k == "input" else v) != stored[k]}
+        if changed:
+            sys.exit("deposit_run: --resume keeps the run's settings; these differ from %s: %s"
+                     % (os.path.join(out, SETTINGS_FILE), changed))
+        path, step = newest_checkpoint(out)
+        if path is None:
+            sys.exit("deposit_run: %s holds no complete checkpoint (%s) to resume from"
+                     % (out, " or ".join(CHECKPOINTS)))
+        return out, dict(stored), path, step
+    out = os.path.abspath(args.out or os.path.join(
+        os.getcwd(), "runs", "deposit-" + datetime.datetime.now().strftime("%Y%m%d-%H%M%S")))
+    if args.cont and read_settings(out) == {k: settings[k] for k in DEFAULTS}:
+        path, step = newest_checkpoint(out)
+        if path is not None:
+            return out, settings, path, step
+    return out, settings, None, None
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    out, settings, resume_from, resume_step = plan(args)
+    if resume_from is None:
+        os.makedirs(out, exist_ok=True)
+        start_fresh(out)
+        write_settings(out, settings)
+    settings.update(np=args.np, launcher=args.launcher)
+    if resume_from:
+        print("deposit_run: resuming %s from step %d (%s)"
+              % (out, resume_step, os.path.basename(resume_from)), flush=True)
+    result, wall = run_lammps(args, settings, out, resume_from, resume_step)
+    for name in CHECKPOINTS:    # the deposit is finished: nothing to resume
+        if os.path.exists(os.path.join(out, name)):
+            os.remove(os.path.join(out, name))
 
     # the picture: dump image names it by step; keep a stable name too
     pics = sorted(glob.glob(os.path.join(out, "deposit-*.png")))
@@ -217,18 +384,23 @@ def main(argv=None):
     pk["np"] = args.np
     with open(os.path.join(out, "packing.dat"), "a") as f:
         f.write("wall_seconds %.2f\nnp %d\n" % (wall, args.np))
-    title = r"$\eta$=%g $\zeta$=%g $\delta_r$=%g N=%d" % (args.eta, args.zeta, args.dr, args.N)
+        if resume_from:
+            f.write("resumed_from %d\n" % resume_step)
+            pk["resumed_from"] = resume_step
+    st = settings
+    title = r"$\eta$=%g $\zeta$=%g $\delta_r$=%g N=%d" % (st["eta"], st["zeta"], st["dr"], st["N"])
     if not args.no_plots:
         plot_histograms(out, title)
 
     print("\ndeposit_run: N %d  eta %g  zeta %g  delta_r %g  (%d ranks, %.0f s, %d steps)"
-          % (args.N, args.eta, args.zeta, args.dr, args.np, wall, int(pk.get("steps", 0))))
+          % (st["N"], st["eta"], st["zeta"], st["dr"], args.np, wall, int(pk.get("steps", 0))))
     print("  volume fraction phi = %.4f   (slab z in [%.3f, %.3f], %d particles)"
           % (pk["phi"], pk["zlo"], pk["zhi"], int(pk["Nslab"])))
     print("  coordination number Z = %.3f   without rattlers %.3f (%d rattlers)"
           % (pk["Z"], pk["Z_no_rattlers"], int(pk["rattlers"])))
     print("  files in %s:" % out)
     notes = {"log.lammps": "LAMMPS log", "screen.txt": "LAMMPS screen output",
+             SETTINGS_FILE: "the run's settings (for --resume)",
              "packing.dat": "phi, Z and more as 'key value'",
              "contact_histo.dat": "contact-normal histogram (theta, P(Omega), fraction)",
              "orient_histo.dat": "long-axis histogram (theta, P(Omega), fraction)",

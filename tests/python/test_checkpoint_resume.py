@@ -1,0 +1,140 @@
+"""Checkpoints of the deposit runner survive kill -9 (tools/deposit_run.py).
+
+A small deposit (100 spheres, one rank) writes a restart checkpoint every 2000 steps. It is
+killed with SIGKILL (runner and LAMMPS) after its first complete checkpoint, while the pour is
+still inserting; the other checkpoint file is replaced by a torn copy, as a kill in the middle
+of a write leaves it. `deposit_run.py --resume DIR` must pick the intact checkpoint, read it
+(not start a new pour), insert the particles still missing and finish the deposit with every
+particle present, a sane volume fraction and `resumed_from STEP` in packing.dat.
+"""
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+import deposit_run
+
+ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
+                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
+N = 100
+SETTINGS = ["--N", str(N), "--eta", "1", "--zeta", "1", "--dr", "0", "--ketol", "1e-2",
+            "--no-image", "--checkpoint-every", "2000"]
+QUIET = ["--np", "1", "--no-plots", "--quiet"]
+
+
+def runner_env():
+    env = dict(os.environ)
+    if "LAMMPS_BUILD" not in env and env.get("ELLIPSOID_DEP_LMP"):
+        env["LAMMPS_BUILD"] = os.path.dirname(env["ELLIPSOID_DEP_LMP"])
+    return env
+
+
+def first_thermo_row(log):
+    """{column: value} of the first thermo row of a LAMMPS log"""
+    lines = log.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.split()[:1] == ["Step"])
+    return dict(zip(lines[k].split(), (float(x) for x in lines[k + 1].split())))
+
+
+@pytest.fixture(scope="module")
+def killed(tmp_path_factory):
+    """a run folder whose deposit was killed -9 after its first checkpoint"""
+    out = str(tmp_path_factory.mktemp("ckpt") / "run")
+    proc = subprocess.Popen([sys.executable, RUNNER, "--out", out] + SETTINGS + QUIET,
+                            env=runner_env(), stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL, start_new_session=True)
+    deadline = time.time() + 300
+    try:
+        while deposit_run.newest_checkpoint(out)[0] is None:
+            assert proc.poll() is None, "the run ended before its first checkpoint"
+            assert time.time() < deadline, "no checkpoint within 300 s"
+            time.sleep(0.05)
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)    # the runner and its LAMMPS
+        proc.wait()
+    time.sleep(0.2)
+    return out
+
+
+def test_killed_run_left_a_checkpoint_and_no_result(killed):
+    path, step = deposit_run.newest_checkpoint(killed)
+    assert step is not None and step > 0 and step % 2000 == 0, step
+    assert not os.path.exists(os.path.join(killed, "packing.dat"))
+    stored = json.load(open(os.path.join(killed, "settings.json")))
+    assert stored["N"] == N and stored["checkpoint_every"] == 2000
+
+
+def test_torn_checkpoint_is_not_chosen(killed, tmp_path):
+    path, step = deposit_run.newest_checkpoint(killed)
+    data = open(path, "rb").read()
+    torn = str(tmp_path / "torn")
+    with open(torn, "wb") as f:
+        f.write(data[: len(data) // 2])
+    assert deposit_run.checkpoint_step(path) == step
+    assert deposit_run.checkpoint_step(torn) is None
+    with open(torn, "wb") as f:
+        f.write(b"not a restart file")
+    assert deposit_run.checkpoint_step(torn) is None
+
+
+def test_continue_resumes_only_the_same_settings(killed):
+    path, step = deposit_run.newest_checkpoint(killed)
+    same = deposit_run.parse_args(["--out", killed, "--continue"] + SETTINGS)
+    assert deposit_run.plan(same)[2:] == (path, step)
+    other = deposit_run.parse_args(["--out", killed, "--continue"] + SETTINGS[:-2]
+                                   + ["--checkpoint-every", "3000"])
+    assert deposit_run.plan(other)[2:] == (None, None)
+
+
+def test_resume_refuses_other_settings(killed):
+    r = subprocess.run([sys.executable, RUNNER, "--resume", killed, "--N", "200"] + QUIET,
+                       env=runner_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=60)
+    assert r.returncode != 0 and "settings" in r.stdout and "'N': 200" in r.stdout, r.stdout
+
+
+@pytest.fixture(scope="module")
+def resumed(killed):
+    path, step = deposit_run.newest_checkpoint(killed)
+    # the other file as a kill in the middle of writing the next checkpoint leaves it
+    other = [os.path.join(killed, n) for n in deposit_run.CHECKPOINTS
+             if os.path.join(killed, n) != path][0]
+    with open(path, "rb") as f, open(other, "wb") as g:
+        g.write(f.read()[:5000])
+    r = subprocess.run([sys.executable, RUNNER, "--resume", killed] + QUIET, env=runner_env(),
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout[-3000:]
+    return {"step": step, "path": path, "stdout": r.stdout,
+            "log": open(os.path.join(killed, "log.resume-%d.lammps" % step)).read(),
+            "packing": deposit_run.read_packing(os.path.join(killed, "packing.dat")),
+            "dump": open(os.path.join(killed, "deposit.dump")).read().splitlines(),
+            "files": os.listdir(killed)}
+
+
+def test_resume_reads_the_intact_checkpoint(resumed):
+    assert "resuming" in resumed["stdout"] and "from step %d" % resumed["step"] in resumed["stdout"]
+    log = resumed["log"]
+    assert "read_restart %s" % resumed["path"] in log
+    assert "Reading restart file" in log and "Created orthogonal box" not in log
+    assert "Resetting global fix info from restart file" in log
+    # the kill came while the pour was still inserting: its schedule continued after resume
+    row = first_thermo_row(log)
+    assert row["Step"] == resumed["step"] and 0 < row["f_pour"] < N, row
+
+
+def test_resumed_deposit_is_complete(resumed):
+    pk = resumed["packing"]
+    assert int(pk["resumed_from"]) == resumed["step"]
+    assert int(pk["N"]) == N and int(pk["steps"]) > resumed["step"]
+    assert 0.5 < pk["phi"] < 0.7 and pk["Nslab"] > 20 and pk["Z"] > 3.0, pk
+    dump = resumed["dump"]
+    assert int(dump[3]) == N
+    ids = sorted(int(line.split()[0]) for line in dump[9:9 + N])
+    assert ids == list(range(1, N + 1))
+    # finished: the checkpoints are gone, nothing left to resume
+    assert not any(n in resumed["files"] for n in deposit_run.CHECKPOINTS)
