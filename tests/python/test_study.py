@@ -1,18 +1,25 @@
 """The deposition study end to end at a tiny size: the default deposit (tools/deposit_run.py on
-2 MPI ranks) and a sweep of 2 shapes (tools/sweep.py) with its figures
-(tools/plot_figures.py). Checks that the files exist, the numbers are sane and the PNGs are
-non-empty images."""
+2 MPI ranks, split in x and y) and the tiny study (workflow/config/tiny.yaml: 2 shapes) through
+Snakemake with its table, figures and picture; the table's statistics over seeds; retries that
+keep the logs of failed attempts; the Slurm profile in a dry run. Checks that the files exist,
+the numbers are sane and the PNGs are non-empty images."""
 import csv
+import math
 import os
+import shutil
 import struct
 import subprocess
 import sys
+
+import yaml
 
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 TOOLS = os.path.join(ROOT, "tools")
 PY = sys.executable
+SNAKEFILE = os.path.join(ROOT, "workflow", "Snakefile")
+TINY = os.path.join(ROOT, "workflow", "config", "tiny.yaml")
 
 
 def lmp_env():
@@ -42,10 +49,10 @@ def assert_image(path):
     assert w > 50 and h > 50, (path, w, h)
 
 
-def run(cmd, cwd, timeout):
+def run(cmd, cwd, timeout, ok=True):
     r = subprocess.run(cmd, cwd=cwd, env=lmp_env(), stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, text=True, timeout=timeout)
-    assert r.returncode == 0, r.stdout[-3000:]
+    assert (r.returncode == 0) == ok, r.stdout[-3000:]
     return r.stdout
 
 
@@ -80,24 +87,145 @@ def test_default_deposit(tmp_path):
     a, b, c = row[9:12]
     assert a >= b >= c > 0    # eta = 1.4, zeta = 1.8: semi-axes a > b > c along x, y, z
     assert abs(a / b - 1.4) < 1e-6 and abs(b / c - 1.8) < 1e-6
+    # the tall box is split in x and y only, so both ranks hold particles
+    assert "2 by 1 by 1 MPI processor grid" in open(out / "log.lammps").read()
 
 
-def test_tiny_sweep_and_figures(tmp_path):
-    out = tmp_path / "sweep"
-    args = [PY, os.path.join(TOOLS, "sweep.py"), "--eta", "1.0", "1.5", "--zeta", "1.0",
-            "--dr", "0", "--seeds", "1", "--N", "150", "--ketol", "1e-3", "--jobs", "2", "--out", str(out)]
-    text = run(args, str(tmp_path), 900)
-    assert "2 finished points" in text
-    rows = list(csv.DictReader(open(out / "results.csv")))
-    assert len(rows) == 2
-    for r in rows:
-        assert 0.4 < float(r["phi"]) < 0.85 and float(r["Z"]) > 2.0
-        assert (out / r["contact_histo"]).exists() and (out / r["orient_histo"]).exists()
-        assert float(r["run_seconds"]) > 0
-    # resumable: a second call runs nothing
-    text = run(args, str(tmp_path), 120)
-    assert "0 to run" in text
-    text = run([PY, os.path.join(TOOLS, "plot_figures.py"), str(out / "results.csv")],
-               str(tmp_path), 300)
+def snakemake(tmp_path, *args, config=TINY):
+    """the study's Snakefile on the given config, results and scratch under tmp_path"""
+    return ["snakemake", "--snakefile", SNAKEFILE, "--configfile", str(config), "--cores", "2",
+            "--directory", str(tmp_path / "work")] + list(args) + [
+            "--config", "results=%s" % (tmp_path / "results"), "scratch=%s" % (tmp_path / "scratch")]
+
+
+def job_counts(text):
+    """{rule: jobs} from the job stats of a snakemake dry run"""
+    table = text.split("Job stats:")[1].split("\n\n")[0].splitlines()[3:]
+    return {w[0]: int(w[1]) for w in (line.split() for line in table) if w[0] != "total"}
+
+
+def test_tiny_study_through_snakemake(tmp_path):
+    run(snakemake(tmp_path, "-q"), str(tmp_path), 600)
+    res = tmp_path / "results"
+    table = list(csv.DictReader(open(res / "table.csv")))
+    assert sorted((float(r["eta"]), float(r["zeta"])) for r in table) == [(1.0, 1.0), (1.5, 1.0)]
+    for r in table:
+        assert int(r["N"]) == 100 and r["law"] == "coulomb" and int(r["seeds"]) == 1
+        assert 0.5 < float(r["phi_mean"]) < 0.75 and float(r["Z_mean"]) > 3.0, r
+        assert math.isnan(float(r["phi_sem"]))    # one seed: no standard error
+        for h in ("contact_histo", "orient_histo"):
+            th, p, e = zip(*[map(float, line.split()) for line in open(res / r[h])
+                             if not line.startswith("#")])
+            assert len(th) == 18 and all(x >= 0 for x in p)
+    deposits = list(csv.DictReader(open(res / "deposits.csv")))
+    assert len(deposits) == 2 and {d["seed"] for d in deposits} == {"1"}
     for name in ("fig_density_lines.png", "fig_contact_shapes.png", "fig_orient_shapes.png"):
-        assert_image(str(out / name))
+        assert_image(str(res / "figures" / name))
+    assert_image(str(res / "picture.png"))
+    # results hold small files only: dumps, logs and checkpoints stay in the scratch folder
+    kept = {f for _, _, files in os.walk(res) for f in files}
+    assert not any(f.endswith((".dump", ".lammps", ".log")) or f.startswith("checkpoint")
+                   for f in kept), kept
+    assert list((tmp_path / "scratch" / "points").glob("*/deposit.dump"))
+    # finished deposits are outputs: nothing to redo; more seeds run only the new deposits
+    assert "Nothing to be done" in run(snakemake(tmp_path, "-n"), str(tmp_path), 120)
+    config = yaml.safe_load(open(TINY))
+    config["sets"]["spheroids"]["seeds"] = [1, 2]
+    (tmp_path / "more.yaml").write_text(yaml.safe_dump(config))
+    text = run(snakemake(tmp_path, "-n", config=tmp_path / "more.yaml"), str(tmp_path), 120)
+    assert job_counts(text) == {"deposit": 2, "table": 1, "figures": 1, "all": 1}, text
+    assert "seed=2" in text and "seed=1" not in text
+    # a removed deposit is redone alone when the table is asked for again
+    shutil.rmtree(res / "points" / "eta1.5_zeta1_dr0_N100_coulomb" / "s1")
+    text = run(snakemake(tmp_path, "-n", "--forcerun", "table"), str(tmp_path), 120)
+    assert job_counts(text) == {"deposit": 1, "table": 1, "figures": 1, "all": 1}, text
+
+
+def test_failed_deposit_is_retried_and_its_logs_kept(tmp_path):
+    config = yaml.safe_load(open(TINY))
+    config["laws"]["coulomb"] = "no_such_law 1.0"
+    config["retries"] = 1
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(yaml.safe_dump(config))
+    target = str(tmp_path / "results" / "points" / "eta1_zeta1_dr0_N100_coulomb" / "s1" /
+                 "packing.dat")
+    text = run(snakemake(tmp_path, target, config=bad), str(tmp_path), 300, ok=False)
+    assert "Trying to restart job" in text
+    logs = tmp_path / "scratch" / "logs"
+    for attempt in (1, 2):
+        log = (logs / ("eta1_zeta1_dr0_N100_coulomb_s1.log.failed-attempt-%d" % attempt))
+        assert "ERROR" in log.read_text(), attempt
+
+
+def test_table_mean_and_standard_error_over_seeds(tmp_path):
+    """study_table.py against numbers computed here: three seeds of one point"""
+    res = tmp_path / "results"
+    phis, zs = [0.60, 0.62, 0.65], [5.0, 5.5, 6.5]
+    packings = []
+    for seed, (phi, z) in enumerate(zip(phis, zs), 1):
+        d = res / "points" / "eta1.2_zeta1.4_dr0.3_N500_viscous" / ("s%d" % seed)
+        d.mkdir(parents=True)
+        (d / "packing.dat").write_text(
+            "N 500\neta 1.2\nzeta 1.4\ndelta_r 0.3\nseed %d\nsteps 1000\nphi %g\nZ %g\n"
+            "Z_no_rattlers %g\nNslab 200\nrattlers %d\nfabric_anisotropy 0.1\nnematic_S 0.2\n"
+            "Qzz -0.1\nwall_seconds 10\n" % (seed, phi, z, z, seed))
+        for h in ("contact_histo", "orient_histo"):
+            (d / (h + ".dat")).write_text("# t\n1000 2\n1 0.5 %g 0.5\n2 1.5 %g 0.5\n"
+                                          % (seed, 2 * seed))
+        packings.append(str(d / "packing.dat"))
+    run([PY, os.path.join(TOOLS, "study_table.py"), "--results", str(res)] + packings,
+        str(tmp_path), 60)
+    (row,) = list(csv.DictReader(open(res / "table.csv")))
+    assert row["law"] == "viscous" and int(row["seeds"]) == 3
+    sem = lambda v: math.sqrt(sum((x - sum(v) / 3) ** 2 for x in v) / 2 / 3)  # noqa: E731
+    assert abs(float(row["phi_mean"]) - 0.62333333) < 1e-6
+    assert abs(float(row["phi_sem"]) - sem(phis)) < 1e-9
+    assert abs(float(row["Z_sem"]) - sem(zs)) < 1e-9
+    assert abs(float(row["rattler_fraction_mean"]) - 2 / 200) < 1e-12
+    hist = [list(map(float, line.split())) for line in open(res / row["contact_histo"])
+            if not line.startswith("#")]
+    assert hist[0][:2] == [0.5, 2.0] and abs(hist[0][2] - sem([1, 2, 3])) < 1e-6
+    assert hist[1][:2] == [1.5, 4.0] and abs(hist[1][2] - sem([2, 4, 6])) < 1e-6
+
+
+def test_paper_study_definition(tmp_path):
+    """the paper's study (workflow/config/paper.yaml) covers what the study must hold"""
+    text = run(["snakemake", "--snakefile", SNAKEFILE, "--configfile",
+                os.path.join(ROOT, "workflow", "config", "paper.yaml"), "--cores", "2", "-n",
+                "--directory", str(tmp_path), "--config", "scratch=%s" % tmp_path],
+               str(tmp_path), 300)
+    runs = {line.split("wildcards:")[1].strip() for line in text.splitlines()
+            if "wildcards:" in line}
+    points = {}
+    for w in runs:
+        d = dict(kv.strip().split("=") for kv in w.split(","))
+        key = (float(d["eta"]), float(d["zeta"]), float(d["dr"]), d["law"])
+        assert int(d["N"]) >= 3000
+        points.setdefault(key, set()).add(int(d["seed"]))
+    grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
+    for e in grid:
+        for z in grid:
+            assert len(points[(e, z, 0.0, "coulomb")]) >= 2
+    for v in grid + [1.3, 1.5, 1.7]:
+        assert len(points[(v, v, 0.0, "coulomb")]) >= 3
+        assert len(points[(v, v, 0.0, "viscous")]) >= 1
+    for dr in (0.3, 0.6):
+        for v in grid:
+            for shape in ((v, v), (v, 1.0), (1.0, v)):
+                assert len(points[shape + (dr, "coulomb")]) >= 2
+        assert len(points[(1.6, 1.8, dr, "coulomb")]) >= 2
+
+
+def test_slurm_profile_dry_run(tmp_path):
+    """every deposit a Slurm job with its ranks, memory and time"""
+    text = run(snakemake(tmp_path, "-n", "--profile",
+                         os.path.join(ROOT, "workflow", "profiles", "slurm")), str(tmp_path), 120)
+    blocks = [b for b in text.split("\n\n") if "rule deposit:" in b or "rule picture:" in b]
+    assert len(blocks) == 3, text
+    for b in blocks:
+        assert "localrule" not in b
+        res = dict(kv.strip().split("=") for kv in
+                   b.split("resources:")[1].splitlines()[0].split(","))
+        assert res["tasks"] == "1" and res["mpi"] == "mpirun" and res["cpus_per_task"] == "1"
+        assert res["mem_mb"] == "500" and res["runtime"] == "10"
+    assert "localrule table:" in text and "localrule figures:" in text
