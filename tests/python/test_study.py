@@ -7,11 +7,15 @@ import csv
 import math
 import os
 import shutil
+import signal
 import struct
 import subprocess
 import sys
+import time
 
 import yaml
+
+import deposit_run
 
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
@@ -139,6 +143,36 @@ def test_tiny_study_through_snakemake(tmp_path):
     shutil.rmtree(res / "points" / "eta1.5_zeta1_dr0_N100_coulomb" / "s1")
     text = run(snakemake(tmp_path, "-n", "--forcerun", "table"), str(tmp_path), 120)
     assert job_counts(text) == {"deposit": 1, "table": 1, "figures": 1, "all": 1}, text
+
+
+def test_interrupted_study_resumes_its_deposit(tmp_path):
+    """snakemake killed -9 in the middle of a deposit: started again, the deposit continues
+    from its checkpoint instead of pouring anew"""
+    config = yaml.safe_load(open(TINY))
+    config["checkpoint_every"] = 2000
+    cfg = tmp_path / "ckpt.yaml"
+    cfg.write_text(yaml.safe_dump(config))
+    target = str(tmp_path / "results" / "points" / "eta1_zeta1_dr0_N100_coulomb" / "s1" /
+                 "packing.dat")
+    folder = str(tmp_path / "scratch" / "points" / "eta1_zeta1_dr0_N100_coulomb_s1")
+    proc = subprocess.Popen(snakemake(tmp_path, target, config=cfg), cwd=str(tmp_path),
+                            env=lmp_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    deadline = time.time() + 300
+    try:
+        while deposit_run.newest_checkpoint(folder)[0] is None:
+            assert proc.poll() is None, "the study ended before the deposit's first checkpoint"
+            assert time.time() < deadline, "no checkpoint within 300 s"
+            time.sleep(0.05)
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)    # snakemake, the runner and LAMMPS
+        proc.wait()
+    step = deposit_run.newest_checkpoint(folder)[1]
+    run(snakemake(tmp_path, "--unlock", config=cfg), str(tmp_path), 60)    # the killed lock
+    run(snakemake(tmp_path, target, config=cfg), str(tmp_path), 600)
+    pk = deposit_run.read_packing(target)
+    assert int(pk["resumed_from"]) >= step and int(pk["N"]) == 100
+    assert os.path.exists(os.path.join(folder, "log.resume-%d.lammps" % pk["resumed_from"]))
 
 
 def test_failed_deposit_is_retried_and_its_logs_kept(tmp_path):
