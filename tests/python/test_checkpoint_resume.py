@@ -9,14 +9,13 @@ particle present, a sane volume fraction and `resumed_from STEP` in packing.dat.
 """
 import json
 import os
-import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
 import deposit_run
+from checkpoint_helpers import kill_after_first_checkpoint
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
@@ -45,19 +44,8 @@ def first_thermo_row(log):
 def killed(tmp_path_factory):
     """a run folder whose deposit was killed -9 after its first checkpoint"""
     out = str(tmp_path_factory.mktemp("ckpt") / "run")
-    proc = subprocess.Popen([sys.executable, RUNNER, "--out", out] + SETTINGS + QUIET,
-                            env=runner_env(), stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, start_new_session=True)
-    deadline = time.time() + 300
-    try:
-        while deposit_run.newest_checkpoint(out)[0] is None:
-            assert proc.poll() is None, "the run ended before its first checkpoint"
-            assert time.time() < deadline, "no checkpoint within 300 s"
-            time.sleep(0.05)
-    finally:
-        os.killpg(proc.pid, signal.SIGKILL)    # the runner and its LAMMPS
-        proc.wait()
-    time.sleep(0.2)
+    kill_after_first_checkpoint([sys.executable, RUNNER, "--out", out] + SETTINGS + QUIET, out,
+                                runner_env())
     return out
 
 

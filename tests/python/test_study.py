@@ -7,15 +7,14 @@ import csv
 import math
 import os
 import shutil
-import signal
 import struct
 import subprocess
 import sys
-import time
 
 import yaml
 
 import deposit_run
+from checkpoint_helpers import kill_after_first_checkpoint
 
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
@@ -99,7 +98,8 @@ def snakemake(tmp_path, *args, config=TINY):
     """the study's Snakefile on the given config, results and scratch under tmp_path"""
     return ["snakemake", "--snakefile", SNAKEFILE, "--configfile", str(config), "--cores", "2",
             "--directory", str(tmp_path / "work")] + list(args) + [
-            "--config", "results=%s" % (tmp_path / "results"), "scratch=%s" % (tmp_path / "scratch")]
+            "--config", "results=%s" % (tmp_path / "results"),
+            "scratch=%s" % (tmp_path / "scratch")]
 
 
 def job_counts(text):
@@ -155,19 +155,8 @@ def test_interrupted_study_resumes_its_deposit(tmp_path):
     target = str(tmp_path / "results" / "points" / "eta1_zeta1_dr0_N100_coulomb" / "s1" /
                  "packing.dat")
     folder = str(tmp_path / "scratch" / "points" / "eta1_zeta1_dr0_N100_coulomb_s1")
-    proc = subprocess.Popen(snakemake(tmp_path, target, config=cfg), cwd=str(tmp_path),
-                            env=lmp_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
-    deadline = time.time() + 300
-    try:
-        while deposit_run.newest_checkpoint(folder)[0] is None:
-            assert proc.poll() is None, "the study ended before the deposit's first checkpoint"
-            assert time.time() < deadline, "no checkpoint within 300 s"
-            time.sleep(0.05)
-    finally:
-        os.killpg(proc.pid, signal.SIGKILL)    # snakemake, the runner and LAMMPS
-        proc.wait()
-    step = deposit_run.newest_checkpoint(folder)[1]
+    step = kill_after_first_checkpoint(snakemake(tmp_path, target, config=cfg), folder,
+                                       lmp_env(), cwd=str(tmp_path))
     run(snakemake(tmp_path, "--unlock", config=cfg), str(tmp_path), 60)    # the killed lock
     run(snakemake(tmp_path, target, config=cfg), str(tmp_path), 600)
     pk = deposit_run.read_packing(target)
