@@ -85,7 +85,7 @@ bool LAMMPS_NS::names_a_material(const std::vector<std::string> &words)
 {
   for (std::size_t k = 0; k + 1 < words.size(); k++)
     if ((words[k] == "hertz/material" || words[k] == "wall_material") &&
-        !utils::is_double(words[k + 1]))
+        !utils::is_double(words[k + 1]) && words[k + 1] != "rigid")
       return true;
   return false;
 }
