@@ -50,7 +50,7 @@ ComputePackingProfile::ComputePackingProfile(LAMMPS *lmp, int narg, char **arg) 
       if (iarg + 2 > narg)
         utils::missing_cmd_args(FLERR, std::string("compute packing/profile ") + arg[iarg], error);
       const double value = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (arg[iarg][2] == 'l')
+      if (strcmp(arg[iarg], "zlo") == 0)
         zlo = value;
       else
         zhi = value;

@@ -234,12 +234,13 @@ def test_voxel_porosity_converges():
 
 @pytest.fixture(scope="module")
 def deposit(tmp_path_factory):
-    """examples/deposit/in.deposit with 60 particles, stopped as soon as all are in and their
-    kinetic energy is below 1e-2 m g d each (a small, loose but real deposit)"""
+    """examples/deposit/in.deposit with 100 particles, stopped once all are in and their
+    kinetic energy is below 0.05 m g d each (checked every 500 steps): small but real"""
     out = tmp_path_factory.mktemp("deposit")
     lmp = new_lammps()
-    for name, value in (("N", 60), ("ketol", 1e-2), ("image", 0), ("out", str(out)),
-                        ("seed", 17)):
+    # the runner passes the tangential law words explicitly, as here
+    for name, value in (("N", 100), ("ketol", 5e-2), ("chunk", 500), ("image", 0),
+                        ("out", str(out)), ("seed", 17), ("tangential", '"history 2.0e3 0.5"')):
         lmp.command(f"variable {name} index {value}")
     lmp.file(os.path.join(root_dir(), "examples", "deposit", "in.deposit"))
     phi = lmp.extract_compute("pack", 0, 1)[0]
@@ -251,7 +252,7 @@ def test_deposit_porosity_matches_packing_compute(deposit):
     out, phi = deposit
     particles, box = pores.read_dump(os.path.join(out, "deposit.dump"))
     pk = pores.read_packing(os.path.join(out, "packing.dat"))
-    assert len(particles) == 60
+    assert len(particles) == 100
     zlo, zhi = pk["zlo"], pk["zhi"]
     assert zhi > zlo
     v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
