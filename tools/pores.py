@@ -294,19 +294,18 @@ def local_thickness(pore, spacing, radius_max, window, progress):
     h = min(spacing)
     radii = h * np.arange(1, int(math.floor(radius_max / h)) + 1)
     thickness = np.zeros(pore[:, :, window].shape)
-    # balls that can reach the window: centres within radius_max of it
-    lo = max(0, window.start - int(math.ceil(radius_max / spacing[2])))
-    hi = min(pore.shape[2], window.stop + int(math.ceil(radius_max / spacing[2])))
-    dist_near = distance[:, :, lo:hi]
     inside = pore[:, :, window]
     for n, r in enumerate(radii):
-        centres = dist_near >= r
+        # a ball of radius r reaches the window only from centres within r of it
+        lo = max(0, window.start - int(math.ceil(r / spacing[2])))
+        hi = min(pore.shape[2], window.stop + int(math.ceil(r / spacing[2])))
+        centres = distance[:, :, lo:hi] >= r
         if not centres.any():
             break
         reach = periodic_distance(~centres, spacing, r)[:, :, window.start - lo:window.stop - lo]
         thickness[(reach <= r) & inside] = r
         if pore.size > PROGRESS_VOXELS and (n + 1) % 5 == 0:
-            progress("local thickness: radius %.4g of at most %.4g" % (r, radii[-1]))
+            progress("local thickness: radius %.4g (at most %.4g)" % (r, radii[-1]))
     return thickness, distance
 
 
@@ -330,6 +329,46 @@ def periodic_labels(pore):
                 parent[max(ru, rv)] = min(ru, rv)
     roots = np.array([root(k) for k in range(n + 1)])
     return roots[labels], n
+
+
+def geometric_tortuosity(pore, spacing):
+    """mean over the pore voxels of the top layer reached from the bottom layer of (shortest
+    path through the pore voxels from any bottom pore voxel) / (height between the layer
+    centres); paths step between 26-neighbours (x and y periodic). None if not connected."""
+    nx, ny, nz = pore.shape
+    if nz < 2:
+        return None
+    if nx < 3 or ny < 3:    # the periodic neighbours would repeat
+        raise ValueError("geometric tortuosity needs at least 3 voxels in x and y")
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+    index = -np.ones(pore.shape, dtype=np.int64)
+    index[pore] = np.arange(int(pore.sum()))
+    rows, cols, weights = [], [], []
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            for dz in (0, 1):
+                if (dz, dy, dx) <= (0, 0, 0):    # each neighbour pair once
+                    continue
+                a = index[:, :, :nz - dz]
+                b = np.roll(index, (-dx, -dy), axis=(0, 1))[:, :, dz:]
+                both = (a >= 0) & (b >= 0)
+                rows.append(a[both])
+                cols.append(b[both])
+                weights.append(np.full(int(both.sum()), math.sqrt(
+                    (dx * spacing[0]) ** 2 + (dy * spacing[1]) ** 2 + (dz * spacing[2]) ** 2)))
+    n = int(pore.sum())
+    graph = coo_matrix((np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
+                       shape=(n, n)).tocsr()
+    bottom = index[:, :, 0][pore[:, :, 0]]
+    top = index[:, :, -1][pore[:, :, -1]]
+    if bottom.size == 0 or top.size == 0:
+        return None
+    length = dijkstra(graph, directed=False, indices=bottom, min_only=True)[top]
+    length = length[np.isfinite(length)]
+    if length.size == 0:
+        return None
+    return float(length.mean() / ((nz - 1) * spacing[2]))
 
 
 def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
@@ -366,17 +405,19 @@ def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
     h = min(grid.spacing)
     levels = np.rint(thickness[slab_pore] / h).astype(int)
     counts = np.bincount(levels, minlength=levels.max() + 1)[1:] if npore else np.zeros(0)
-    radius = h * (np.arange(1, len(counts) + 1) + 0.5)
+    radius = h * np.arange(1, len(counts) + 1)
     return {
         "voxel_size": h,
         "voxel_spacing": list(grid.spacing),
         "grid": [grid.nx, grid.ny, grid.nslab],
         "porosity_voxel": npore / slab_pore.size,
         "largest_inscribed_radius": float(distance[:, :, grid.slab][slab_pore].max()),
-        # a voxel on level r_k has local thickness in [r_k, r_k + h): the bin centre
-        "mean_pore_radius": float(thickness[slab_pore].mean() + 0.5 * h) if npore else 0.0,
+        # the level r_k floors the ball radius (-h/2 on average) while distances to solid
+        # voxel centres exceed those to the surface (+h/2 on average): r_k is the estimate
+        "mean_pore_radius": float(thickness[slab_pore].mean()) if npore else 0.0,
         "connected_z": bool(spanning.size > 0),
         "connected_pore_fraction": float(np.isin(labels, spanning).sum() / max(npore, 1)),
+        "geometric_tortuosity": geometric_tortuosity(slab_pore, grid.spacing),
         "pore_size_distribution": {"radius": radius.tolist(),
                                    "volume_fraction": (counts / max(npore, 1)).tolist(),
                                    "bin_width": h},
@@ -412,7 +453,7 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
     fine = analyse_voxels(particles, box, zlo, zhi, voxel, progress)
     coarse = analyse_voxels(particles, box, zlo, zhi, 2 * voxel, progress)
     compared = ("porosity_voxel", "largest_inscribed_radius", "mean_pore_radius", "connected_z",
-                "connected_pore_fraction")
+                "connected_pore_fraction", "geometric_tortuosity")
     result = {
         "slab": {"zlo": zlo, "zhi": zhi, "area_xy": area_xy, "volume": v_slab},
         "particles": len(particles),
@@ -434,7 +475,7 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
     }
     for key in ("voxel_spacing", "grid", "porosity_voxel", "largest_inscribed_radius",
                 "mean_pore_radius", "connected_z", "connected_pore_fraction",
-                "pore_size_distribution", "margin"):
+                "geometric_tortuosity", "pore_size_distribution", "margin"):
         result[key] = fine[key]
     for key in compared:
         result["convergence"][key] = [fine[key], coarse[key]]
@@ -471,7 +512,8 @@ def plot(result, particles, path, title):
     solid, thick = result["_solid_slab"], result["_thickness"]
     zlo, zhi = result["slab"]["zlo"], result["slab"]["zhi"]
     lx, ly = grid.nx * grid.hx, grid.ny * grid.hy
-    fig, ax = plt.subplots(2, 2, figsize=(10, 8))
+    fig, ax = plt.subplots(2, 2, figsize=(10, 8.5))
+    fig.subplots_adjust(hspace=0.35)
     show = np.ma.masked_where(solid, thick)
     cmap = plt.get_cmap("viridis").copy()
     cmap.set_bad("0.75")
@@ -495,8 +537,11 @@ def plot(result, particles, path, title):
     edges = np.linspace(zlo, zhi, min(grid.nslab, 60) + 1)
     exact = [1 - (slab_fraction(particles, a, b) * particles.volumes).sum() / (lx * ly * (b - a))
              for a, b in zip(edges[:-1], edges[1:])]
-    ax[1, 1].step(exact, edges[:-1], where="post", color="k", label="exact (closed form)")
+    ax[1, 1].stairs(exact, edges, orientation="horizontal", color="k", baseline=None,
+                    label="exact (closed form)")
     ax[1, 1].axvline(result["porosity"], color="gray", ls=":", label="slab porosity")
+    lo, hi = min(min(exact), result["porosity"]), max(max(exact), result["porosity"])
+    ax[1, 1].set_xlim(lo - 0.1 * (hi - lo + 0.01), hi + 0.1 * (hi - lo + 0.01))
     ax[1, 1].set(xlabel="porosity", ylabel="z", title="porosity profile inside the slab")
     ax[1, 1].legend(fontsize=8)
     fig.suptitle("%s  porosity %.4f  S_v %.4g  k_KC %.3g" % (
@@ -620,6 +665,8 @@ def main(argv=None):
     print("  mean pore radius    %.4g, %.4g" % tuple(c["mean_pore_radius"]))
     print("  largest pore radius %.4g, %.4g" % tuple(c["largest_inscribed_radius"]))
     print("  connected in z      %s, %s" % tuple(c["connected_z"]))
+    print("  geometric tortuosity %s, %s" % tuple(
+        "none" if t is None else "%.4f" % t for t in c["geometric_tortuosity"]))
     print("  files: pores.json pores.png pores_voxels.raw pores_voxels.mhd")
 
 

@@ -71,6 +71,8 @@ def test_cubic_lattice_voxels():
     assert r["specific_surface"] == pytest.approx(math.pi / D, rel=1e-12)
     assert R <= r["largest_inscribed_radius"] <= R + math.sqrt(3) / 2 * h
     assert r["connected_z"] and r["connected_pore_fraction"] == 1.0
+    # straight vertical channels along the cell edges; other paths detour a little
+    assert 1.0 < r["geometric_tortuosity"] < 1.2
     psd = r["pore_size_distribution"]
     assert sum(psd["volume_fraction"]) == pytest.approx(1.0, rel=1e-12)
     # the largest local thickness is the largest ball, to one radius level
@@ -179,11 +181,11 @@ def test_local_thickness_brute_force():
     pore[:, :, [0, -1]] &= rng.uniform(size=(13, 11, 2)) > 0.5
     h = 1.0    # integer distances: ties at r = k h compare exactly in both computations
     radius_max = 4.5
-    window = slice(0, shape[2])
-    got, distance = pores.local_thickness(pore, (h, h, h), radius_max, window, lambda m: None)
     want = brute_local_thickness(pore, h, int(radius_max / h))
-    np.testing.assert_allclose(got, want, atol=1e-12)
-    assert got.max() > 2 * h    # several levels really occur
+    for window in (slice(0, shape[2]), slice(4, 9)):    # balls from outside the window too
+        got, _ = pores.local_thickness(pore, (h, h, h), radius_max, window, lambda m: None)
+        np.testing.assert_allclose(got, want[:, :, window], atol=1e-12)
+        assert got.max() > 2 * h    # several levels really occur
 
 
 def test_periodic_connectivity():
@@ -205,6 +207,20 @@ def test_periodic_connectivity():
         labels, _ = pores.periodic_labels(closed)
         assert not np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
                                   labels[:, :, -1][labels[:, :, -1] > 0]).size
+
+
+def test_geometric_tortuosity():
+    """an open slab: 1; a one-voxel channel climbing diagonally in x and z, wrapping around
+    the periodic x face: sqrt(1 + (hx/hz)^2); a closed slab: None"""
+    spacing = (0.3, 0.2, 0.4)
+    assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) == pytest.approx(1.0)
+    pore = np.zeros((7, 5, 12), bool)
+    k = np.arange(12)
+    pore[(k + 3) % 7, 2, k] = True
+    tau = pores.geometric_tortuosity(pore, spacing)
+    assert tau == pytest.approx(math.hypot(0.3, 0.4) / 0.4, rel=1e-12)
+    pore[:, :, 6] = False
+    assert pores.geometric_tortuosity(pore, spacing) is None
 
 
 def test_voxel_porosity_converges():
