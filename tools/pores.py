@@ -40,6 +40,7 @@ VOXEL_FRACTION = 0.25     # default voxel size: this fraction of the smallest se
 KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
 QUADRATURE_NODES = (24, 32)    # zone quadrature: Gauss-Legendre in t, trapezoid in phi
 PROGRESS_VOXELS = 2_000_000    # show progress above this many voxels
+TORTUOSITY_MAX_VOXELS = 1_500_000    # pore voxels; the path graph needs ~0.6 kB per voxel
 
 
 class Progress:
@@ -289,8 +290,9 @@ def local_thickness(pore, spacing, radius_max, window, progress):
     largest ball inside the pore space that contains the voxel, on radii k h (h the smallest
     spacing, k = 1, 2, ...) up to radius_max. A ball of radius r is centred on a voxel whose
     distance to the solid is >= r; it covers the voxels within r of its centre. Returns
-    (thickness of the window's voxels, distance map of the grid)."""
-    distance = periodic_distance(pore, spacing, 2 * radius_max)
+    (thickness of the window's voxels, distance map of the grid: exact up to radius_max,
+    larger than radius_max where the true distance is)."""
+    distance = periodic_distance(pore, spacing, radius_max)
     h = min(spacing)
     radii = h * np.arange(1, int(math.floor(radius_max / h)) + 1)
     thickness = np.zeros(pore[:, :, window].shape)
@@ -334,16 +336,18 @@ def periodic_labels(pore):
 def geometric_tortuosity(pore, spacing):
     """mean over the pore voxels of the top layer reached from the bottom layer of (shortest
     path through the pore voxels from any bottom pore voxel) / (height between the layer
-    centres); paths step between 26-neighbours (x and y periodic). None if not connected."""
+    centres); paths step between 26-neighbours (x and y periodic). None if not connected or
+    if the image has more than TORTUOSITY_MAX_VOXELS pore voxels (the graph's memory)."""
     nx, ny, nz = pore.shape
-    if nz < 2:
+    n = int(pore.sum())
+    if nz < 2 or n > TORTUOSITY_MAX_VOXELS:
         return None
     if nx < 3 or ny < 3:    # the periodic neighbours would repeat
         raise ValueError("geometric tortuosity needs at least 3 voxels in x and y")
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import dijkstra
-    index = -np.ones(pore.shape, dtype=np.int64)
-    index[pore] = np.arange(int(pore.sum()))
+    index = -np.ones(pore.shape, dtype=np.int32)
+    index[pore] = np.arange(n, dtype=np.int32)
     rows, cols, weights = [], [], []
     for dx in (-1, 0, 1):
         for dy in (-1, 0, 1):
@@ -357,7 +361,6 @@ def geometric_tortuosity(pore, spacing):
                 cols.append(b[both])
                 weights.append(np.full(int(both.sum()), math.sqrt(
                     (dx * spacing[0]) ** 2 + (dy * spacing[1]) ** 2 + (dz * spacing[2]) ** 2)))
-    n = int(pore.sum())
     graph = coo_matrix((np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
                        shape=(n, n)).tocsr()
     bottom = index[:, :, 0][pore[:, :, 0]]
@@ -373,7 +376,7 @@ def geometric_tortuosity(pore, spacing):
 
 def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
     """voxel porosity, pore sizes and connectivity of the slab at one voxel size"""
-    margin = 2.0 * float(particles.semi.max())
+    margin = float(particles.semi.max())    # doubled below while a pore is wider than half
     for _ in range(4):
         grid = Grid(box, zlo, zhi, voxel, margin)
         progress("voxel grid %d x %d x %d (slab %d layers), voxel %.4g"

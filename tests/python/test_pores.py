@@ -209,9 +209,10 @@ def test_periodic_connectivity():
                                   labels[:, :, -1][labels[:, :, -1] > 0]).size
 
 
-def test_geometric_tortuosity():
+def test_geometric_tortuosity(monkeypatch):
     """an open slab: 1; a one-voxel channel climbing diagonally in x and z, wrapping around
-    the periodic x face: sqrt(1 + (hx/hz)^2); a closed slab: None"""
+    the periodic x face: sqrt(1 + (hx/hz)^2); a closed slab: None; above the voxel limit:
+    None"""
     spacing = (0.3, 0.2, 0.4)
     assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) == pytest.approx(1.0)
     pore = np.zeros((7, 5, 12), bool)
@@ -221,6 +222,8 @@ def test_geometric_tortuosity():
     assert tau == pytest.approx(math.hypot(0.3, 0.4) / 0.4, rel=1e-12)
     pore[:, :, 6] = False
     assert pores.geometric_tortuosity(pore, spacing) is None
+    monkeypatch.setattr(pores, "TORTUOSITY_MAX_VOXELS", 179)    # the open slab has 180
+    assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) is None
 
 
 def test_voxel_porosity_converges():
