@@ -536,14 +536,15 @@ def plot(result, particles, path, title):
     ax[1, 0].legend(fontsize=8)
     # porosity profile: voxel layers and the exact closed form in the same layers
     z = zlo + (np.arange(grid.nslab) + 0.5) * grid.hz
-    ax[1, 1].plot(1 - solid.mean(axis=(0, 1)), z, lw=0.8, label="voxel layers")
+    layers = 1 - solid.mean(axis=(0, 1))
+    ax[1, 1].plot(layers, z, lw=0.8, label="voxel layers")
     edges = np.linspace(zlo, zhi, min(grid.nslab, 60) + 1)
     exact = [1 - (slab_fraction(particles, a, b) * particles.volumes).sum() / (lx * ly * (b - a))
              for a, b in zip(edges[:-1], edges[1:])]
     ax[1, 1].stairs(exact, edges, orientation="horizontal", color="k", baseline=None,
                     label="exact (closed form)")
     ax[1, 1].axvline(result["porosity"], color="gray", ls=":", label="slab porosity")
-    lo, hi = min(min(exact), result["porosity"]), max(max(exact), result["porosity"])
+    lo, hi = min(min(exact), layers.min()), max(max(exact), layers.max())
     ax[1, 1].set_xlim(lo - 0.1 * (hi - lo + 0.01), hi + 0.1 * (hi - lo + 0.01))
     ax[1, 1].set(xlabel="porosity", ylabel="z", title="porosity profile inside the slab")
     ax[1, 1].legend(fontsize=8)
