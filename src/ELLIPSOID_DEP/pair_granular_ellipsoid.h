@@ -92,6 +92,16 @@ class PairGranularEllipsoid : public Pair {
 
   void allocate();
   int add_law(const EllipsoidDep::ForceLaw &law);
+  bool law_of_pair(int i, int j, EllipsoidDep::ForceLaw &law, std::string &refusal) const;
+
+  // per-pair history size of the run that wrote the restart file this pair was read from
+  // (0: none read, or no history written)
+  int restart_history_size;
+  // shortest Hertz contact time over the type pairs (granular_contact_time.h); 0: undefined
+  double impact_velocity;    // pair_style impact_velocity; 0: twice the largest atom speed
+  double contact_time;
+  double contact_time_reported;
+  void update_contact_time();
 };
 
 }    // namespace LAMMPS_NS
