@@ -186,17 +186,34 @@ void FixPourEllipsoid::init()
   }
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   the schedule, and how full a batch is: the mean volume fraction of the region, the
+   fraction at its top (the stream's density is ~ 1/speed, highest where it enters), and
+   the region height that would take all N particles in one batch
+------------------------------------------------------------------------- */
 
 void FixPourEllipsoid::report_schedule() const
 {
   if (me != 0) return;
   const bigint nfinal = nfirst + ((bigint) ninsert - 1) / nper * nfreq;
+  const int nbatch = MIN(nper, ninsert);
+  const double height = zhi - zlo, volume = region_volume();
+  const double fill = nbatch * sampler->mean_volume() / volume;
+  const double v_top = fabs(vz), v_bottom = sqrt(vz * vz - 2.0 * grav * height);
+  std::string top = "unbounded: vz = 0";
+  if (v_top > 0.0) top = fmt::format("{:.3g}", fill * 0.5 * (1.0 + v_bottom / v_top));
   utils::logmesg(lmp,
-                 "fix pour/ellipsoid: {} particles every {} steps, {} by step {}; r in "
-                 "[{}, {}], largest semi-axis {}, mean volume {:.6g}\n",
+                 "fix pour/ellipsoid: {} particles every {} steps, {} by step {}; r in [{}, {}], "
+                 "largest semi-axis {}, mean volume {:.6g}\n"
+                 "  a batch of {} fills the region to volume fraction {:.3g} ({} at its top)\n",
                  nper, nfreq, ninsert, nfinal, distribution.rmin, distribution.rmax, bounding_max,
-                 sampler->mean_volume());
+                 sampler->mean_volume(), nbatch, fill, top);
+  if (ninsert > nper)
+    utils::logmesg(lmp,
+                   "  one batch of all {} at volume fraction {} needs the region {:.6g} high "
+                   "(it is {:.6g})\n",
+                   ninsert, volfrac, ninsert * sampler->mean_volume() / (volfrac * volume) * height,
+                   height);
 }
 
 /* ---------------------------------------------------------------------- */

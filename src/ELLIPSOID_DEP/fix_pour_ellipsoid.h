@@ -88,6 +88,7 @@ class FixPourEllipsoid : public Fix {
   bool overlaps(const EllipsoidDep::Ellipsoid &, const std::vector<EllipsoidDep::Ellipsoid> &);
   bool near_region(const double *x, double bound) const;
   bool outside(int dim, double value, double lo, double hi) const;
+  double stream_depth(double rn, double height) const;
   void xyz_random(double h, double *coord);
   bool owns(const double *coord) const;
   void create_particle(double *coord, const double *vnew, tagint tag, const Eigen::Vector3d &axes,

@@ -4,8 +4,10 @@
    Per particle, in this order of random numbers (which restarts rely on): the height
    deviate, the size, the shape, then per trial position its x, y and orientation, then
    the lateral velocity. A trial overlapping (or touching) any particle near the region or
-   of the same batch is rejected by the kernel's exact test; after maxattempt trials the
-   particle is a failed insertion.
+   of the same batch is rejected by the kernel's exact test. After maxattempt trials at one
+   height the particle draws another height of the stream (one more deviate), up to
+   MAX_HEIGHTS heights; then it is a failed insertion. A pour in which every particle fits
+   at its first height draws exactly the numbers of a pour that tries one height only.
 ------------------------------------------------------------------------- */
 
 #include "fix_pour_ellipsoid.h"
@@ -28,7 +30,8 @@ using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 using MathConst::MY_4PI3;
 
-static constexpr int NEAR_SIZE = 10;    // x, semi-axes, quaternion
+static constexpr int NEAR_SIZE = 10;      // x, semi-axes, quaternion
+static constexpr int MAX_HEIGHTS = 10;    // heights tried per particle before it fails
 
 /* ---------------------------------------------------------------------- */
 
@@ -88,6 +91,22 @@ void FixPourEllipsoid::xyz_random(double h, double *coord)
     coord[1] = yc + 2.0 * r2 * rc;
   }
   coord[2] = h;
+}
+
+/* ----------------------------------------------------------------------
+   depth below the top of the stream (0 <= depth <= height) of a particle with uniform
+   deviate rn: a batch is a snapshot of a steady stream that enters the region's top at
+   speed |vz| and falls under gravity, so the time since entry, not the depth, is uniform
+   and the number density is ~ 1/speed. With vz = 0 this is LAMMPS fix pour's rn^2 law,
+   whose density diverges at the top.
+------------------------------------------------------------------------- */
+
+double FixPourEllipsoid::stream_depth(double rn, double height) const
+{
+  const double v0 = fabs(vz), g = -grav;
+  if (v0 == 0.0) return rn * rn * height;
+  const double t = rn * 2.0 * height / (sqrt(v0 * v0 + 2.0 * g * height) + v0);
+  return MIN(height, v0 * t + 0.5 * g * t * t);
 }
 
 /* ----------------------------------------------------------------------
@@ -176,20 +195,26 @@ void FixPourEllipsoid::pre_exchange()
     // the whole bounding sphere stays inside the region in z, so that no particle is
     // inserted through a floor (or wall) at the region's bottom
     const double bound = axes.maxCoeff();
-    const double h = (hi_current - bound) - rn * rn * (hi_current - lo_current - 2.0 * bound);
+    const double span = hi_current - lo_current - 2.0 * bound;
+    double h = (hi_current - bound) - stream_depth(rn, span);
 
+    // maxattempt trial positions at one height; where that height of the stream is full,
+    // the particle takes another place in the stream (a fresh height deviate)
     bool success = false;
     double quat[4], coord[3];
     Ellipsoid cand;
-    for (int attempt = 0; attempt < maxattempt; attempt++) {
-      xyz_random(h, coord);
-      sampler->orientation(quat);
-      cand = make_ellipsoid(Vec3(coord[0], coord[1], coord[2]), quat, axes);
-      if (!overlaps(cand, near)) {
-        success = true;
-        break;
+    for (int height = 0; height < MAX_HEIGHTS && !success; height++) {
+      if (height > 0) h = (hi_current - bound) - stream_depth(random->uniform(), span);
+      for (int attempt = 0; attempt < maxattempt; attempt++) {
+        xyz_random(h, coord);
+        sampler->orientation(quat);
+        cand = make_ellipsoid(Vec3(coord[0], coord[1], coord[2]), quat, axes);
+        if (!overlaps(cand, near)) {
+          success = true;
+          break;
+        }
+        nrejected++;
       }
-      nrejected++;
     }
     if (!success) {
       batch_failed++;

@@ -48,6 +48,12 @@ void FixPourEllipsoid::options(int narg, char **arg)
       error->all(FLERR, i, "Fix pour/ellipsoid {}: expected an integer, got '{}'", what, arg[i]);
     return utils::inumeric(FLERR, arg[i], false, lmp);
   };
+  auto positive = [&](int i, const std::string &what) {
+    const double value = number(i, what);
+    if (!(value > 0.0))
+      error->all(FLERR, i, "Fix pour/ellipsoid {} must be > 0, got {}", what, value);
+    return value;
+  };
 
   ninsert = integer(3, "N");
   ntype = integer(4, "type");
@@ -74,15 +80,13 @@ void FixPourEllipsoid::options(int narg, char **arg)
         // size mean R delta_r D
         if (iarg + 5 > narg)
           utils::missing_cmd_args(FLERR, "fix pour/ellipsoid size mean R delta_r D", error);
-        const double mean = number(iarg + 2, "size mean R");
+        const double mean = positive(iarg + 2, "size mean R");
         if (strcmp(arg[iarg + 3], "delta_r") != 0)
           error->all(FLERR, iarg + 3,
                      "Fix pour/ellipsoid size mean R: expected 'delta_r', got "
                      "'{}'",
                      arg[iarg + 3]);
         const double delta = number(iarg + 4, "size delta_r");
-        if (!(mean > 0.0))
-          error->all(FLERR, iarg + 2, "Fix pour/ellipsoid size mean R must be > 0, got {}", mean);
         if (!(delta >= 0.0 && delta < 1.0))
           error->all(FLERR, iarg + 4, "Fix pour/ellipsoid delta_r must be in [0, 1), got {}",
                      delta);
@@ -90,26 +94,18 @@ void FixPourEllipsoid::options(int narg, char **arg)
         rmax = mean * (1.0 + delta);
         iarg += 5;
       } else {
-        rmin = number(iarg + 1, "size rmin");
-        rmax = number(iarg + 2, "size rmax");
-        if (!(rmin > 0.0))
-          error->all(FLERR, iarg + 1, "Fix pour/ellipsoid size rmin must be > 0, got {}", rmin);
-        if (!(rmax > 0.0))
-          error->all(FLERR, iarg + 2, "Fix pour/ellipsoid size rmax must be > 0, got {}", rmax);
+        rmin = positive(iarg + 1, "size rmin");
+        rmax = positive(iarg + 2, "size rmax");
         if (rmin > rmax)
           error->all(FLERR, iarg + 1, "Fix pour/ellipsoid size rmin {} exceeds rmax {}", rmin,
                      rmax);
         iarg += 3;
       }
     } else if (word == "alpha") {
-      alpha = number(iarg + 1, "alpha");
-      if (!(alpha > 0.0))
-        error->all(FLERR, iarg + 1, "Fix pour/ellipsoid alpha must be > 0, got {}", alpha);
+      alpha = positive(iarg + 1, "alpha");
       iarg += 2;
     } else if (word == "beta") {
-      beta = number(iarg + 1, "beta");
-      if (!(beta > 0.0))
-        error->all(FLERR, iarg + 1, "Fix pour/ellipsoid beta must be > 0, got {}", beta);
+      beta = positive(iarg + 1, "beta");
       iarg += 2;
     } else if (word == "shape") {
       eta = number(iarg + 1, "shape eta");
@@ -131,9 +127,7 @@ void FixPourEllipsoid::options(int narg, char **arg)
                    delta_zeta);
       iarg += 3;
     } else if (word == "density") {
-      density = number(iarg + 1, "density");
-      if (!(density > 0.0))
-        error->all(FLERR, iarg + 1, "Fix pour/ellipsoid density must be > 0, got {}", density);
+      density = positive(iarg + 1, "density");
       iarg += 2;
     } else if (word == "vol") {
       volfrac = number(iarg + 1, "vol fraction");
