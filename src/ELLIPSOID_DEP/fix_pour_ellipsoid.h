@@ -1,9 +1,12 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: fix pour/ellipsoid
-   Pours polydisperse general (triaxial) ellipsoids into a block or z-cylinder region:
-   sizes from the volume distribution V(r) ~ (r-rmin)^(alpha-1) (rmax-r)^(beta-1),
-   shapes eta = a/b, zeta = b/c, orientations uniform on SO(3), insertion overlaps
-   rejected with the kernel's exact ellipsoid test. See doc/fix_pour_ellipsoid.rst.
+   Pours polydisperse general (triaxial) ellipsoids into a block or z-cylinder region on
+   LAMMPS's fix pour schedule. Sizes, shapes and orientations come from the engine-free
+   sampler (ellipsoid_pour_sampler.h); insertion overlaps are rejected with the kernel's
+   exact ellipsoid test. See doc/fix_pour_ellipsoid.rst.
+   Files: fix_pour_ellipsoid.cpp (life cycle, schedule, restart, output),
+   fix_pour_ellipsoid_options.cpp (the command's arguments and region),
+   fix_pour_ellipsoid_insert.cpp (inserting one batch).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_POUR_ELLIPSOID_H
@@ -12,7 +15,9 @@
 #include "fix.h"
 
 #include "ellipsoid_contact.h"
+#include "ellipsoid_pour_sampler.h"
 
+#include <memory>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -33,11 +38,6 @@ class FixPourEllipsoid : public Fix {
   void restart(char *) override;
   void *extract(const char *, int &) override;
 
-  // --- sampling, public for the unit tests through the fix's own parameters ---
-  double sample_size();                              // r from n(r) ~ V(r) / r^3
-  void sample_shape(double r, double *semi_axes);    // (a, b, c) with a >= b >= c
-  void sample_quat(double *quat);                    // uniform on SO(3)
-
  private:
   int ninsert, ntype, seed;
   char *idregion;
@@ -46,12 +46,10 @@ class FixPourEllipsoid : public Fix {
   double xlo, xhi, ylo, yhi, zlo, zhi;
   double xc, yc, rc;
 
-  // size and shape
-  double rmin, rmax, alpha, beta;
-  double eta, zeta, delta_eta, delta_zeta;
+  // particles
+  EllipsoidDep::PourDistribution distribution;
+  std::unique_ptr<EllipsoidDep::PourSampler> sampler;
   double density;
-  double acceptance;      // expected acceptance of the size rejection sampler
-  double mean_volume;     // mean particle volume under n(r)
   double bounding_max;    // largest semi-axis that can be inserted
 
   // insertion schedule
@@ -75,16 +73,26 @@ class FixPourEllipsoid : public Fix {
 
   int me, nprocs;
 
+  // fix_pour_ellipsoid_options.cpp
   void options(int, char **);
+  void check_region();
+  void check_representable() const;
+
+  // fix_pour_ellipsoid.cpp
+  double region_volume() const;
+  void report_schedule() const;
+
+  // fix_pour_ellipsoid_insert.cpp
   void find_maxid();
+  std::vector<EllipsoidDep::Ellipsoid> gather_near_region(int reserve);
+  bool overlaps(const EllipsoidDep::Ellipsoid &, const std::vector<EllipsoidDep::Ellipsoid> &);
   bool near_region(const double *x, double bound) const;
   bool outside(int dim, double value, double lo, double hi) const;
+  double stream_depth(double rn, double height) const;
   void xyz_random(double h, double *coord);
-  double beta_variate(double a, double b);
-  double gamma_variate(double a);
-  double normal_variate();
-  double shape_value(double mean, double delta);
-  void setup_size_statistics();
+  bool owns(const double *coord) const;
+  void create_particle(double *coord, const double *vnew, tagint tag, const Eigen::Vector3d &axes,
+                       const double *quat);
 };
 
 }    // namespace LAMMPS_NS

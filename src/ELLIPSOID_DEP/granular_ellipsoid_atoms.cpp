@@ -33,6 +33,11 @@ const double *EllipsoidAtoms::shape(int i) const
 
 const double *EllipsoidAtoms::quat(int i) const
 {
+  return stored_quat(i);
+}
+
+double *EllipsoidAtoms::stored_quat(int i) const
+{
   const int k = atom->ellipsoid[i];
   return super ? avec->bonus_super[k].quat : avec->bonus[k].quat;
 }
@@ -64,4 +69,10 @@ EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
   return EllipsoidDep::make_ellipsoid(
       EllipsoidDep::Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]), quat(i),
       EllipsoidDep::Vec3(s[0], s[1], s[2]));
+}
+
+void EllipsoidAtomsWriter::set_ellipsoid(int i, const double *semi_axes, const double *quat)
+{
+  avec->set_shape(i, semi_axes[0], semi_axes[1], semi_axes[2]);
+  std::memcpy(stored_quat(i), quat, 4 * sizeof(double));
 }

