@@ -62,6 +62,7 @@ def lammps_command(settings, out, resume_from=None, log_name="log.lammps"):
                  "out": out, "image": 1 if settings["image"] else 0,
                  "tangential": settings["tangential"],
                  "checkpoint": settings["checkpoint_every"]}
+    variables.update(settings["vars"])
     if resume_from:
         variables["resume"] = resume_from
     for name, value in variables.items():
@@ -257,7 +258,7 @@ def plot_histograms(out, title):
 # what a run is: stored in its folder, so that --resume continues the same deposit
 DEFAULTS = {"N": 1000, "eta": 1.4, "zeta": 1.8, "dr": 0.6, "seed": 4928,
             "tangential": "history 2.0e3 0.5", "ketol": 1e-4, "input": DEFAULT_INPUT,
-            "checkpoint_every": 5000, "image": True}
+            "checkpoint_every": 5000, "image": True, "vars": {}}
 SETTINGS_FILE = "settings.json"
 
 
@@ -283,6 +284,9 @@ def parse_args(argv):
                     help="steps between two restart checkpoints, 0 = none (default 5000; "
                          "a multiple of the input's chunk of 1000 steps keeps the rest checks "
                          "of a resumed run on the same steps)")
+    ap.add_argument("--var", nargs=2, action="append", metavar=("NAME", "VALUE"),
+                    help="any other variable of the input, e.g. --var dt 2e-4 --var fins 0.3 "
+                         "(repeatable; stored with the run's settings)")
     ap.add_argument("--no-image", dest="image", action="store_const", const=False,
                     help="skip the dump image picture")
     ap.add_argument("--resume", metavar="DIR",
@@ -303,7 +307,9 @@ def parse_args(argv):
 
 def requested_settings(args):
     """Settings given on the command line, over the defaults."""
-    given = {k: getattr(args, k) for k in DEFAULTS if getattr(args, k) is not None}
+    given = {k: getattr(args, k) for k in DEFAULTS if k != "vars" and getattr(args, k) is not None}
+    if args.var:
+        given["vars"] = {name: value for name, value in args.var}
     settings = dict(DEFAULTS, **given)
     settings["input"] = os.path.abspath(settings["input"])
     return settings, given

@@ -1,6 +1,6 @@
 """Checkpoints of the deposit runner survive kill -9 (tools/deposit_run.py).
 
-A small deposit (100 spheres, one rank) writes a restart checkpoint every 2000 steps. It is
+A small deposit (100 spheres, one rank) writes a restart checkpoint every 1000 steps. It is
 killed with SIGKILL (runner and LAMMPS) after its first complete checkpoint, while the pour is
 still inserting; the other checkpoint file is replaced by a torn copy, as a kill in the middle
 of a write leaves it. `deposit_run.py --resume DIR` must pick the intact checkpoint, read it
@@ -21,8 +21,11 @@ ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
 N = 100
+EVERY = 1000    # the pour's second batch comes between steps 1000 and 2000
+# an insertion region sized for volume fraction 0.6, more than random insertion reaches, so the
+# pour takes several batches and the first checkpoint falls while it is still inserting
 SETTINGS = ["--N", str(N), "--eta", "1", "--zeta", "1", "--dr", "0", "--ketol", "1e-2",
-            "--no-image", "--checkpoint-every", "2000"]
+            "--no-image", "--var", "fins", "0.6", "--checkpoint-every", str(EVERY)]
 QUIET = ["--np", "1", "--no-plots", "--quiet"]
 
 
@@ -51,10 +54,10 @@ def killed(tmp_path_factory):
 
 def test_killed_run_left_a_checkpoint_and_no_result(killed):
     path, step = deposit_run.newest_checkpoint(killed)
-    assert step is not None and step > 0 and step % 2000 == 0, step
+    assert step is not None and step > 0 and step % EVERY == 0, step
     assert not os.path.exists(os.path.join(killed, "packing.dat"))
     stored = json.load(open(os.path.join(killed, "settings.json")))
-    assert stored["N"] == N and stored["checkpoint_every"] == 2000
+    assert stored["N"] == N and stored["checkpoint_every"] == EVERY
 
 
 def test_torn_checkpoint_is_not_chosen(killed, tmp_path):
