@@ -32,8 +32,8 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
-    fix_history(nullptr), size_history(PAIR_CACHE_SIZE), tangential_offset(PAIR_CACHE_SIZE),
-    history_update(true), freeze_group_bit(0), record_contacts(false)
+    fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
+    freeze_group_bit(0)
 {
   single_enable = 1;
   no_virial_fdotr_compute = 1;
@@ -43,8 +43,8 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   // History of pairs that do not touch (their cached separating plane) must survive a
   // neighbour-list rebuild: the pair list is not a size list, so ask for every stored pair.
   beyond_contact = 1;
-  // every cached value changes sign when i and j swap (see ellipsoid_contact.h), which is
-  // exactly the default transfer of fix NEIGH_HISTORY
+  // every cached value changes sign when i and j swap (PairCache), which is exactly the
+  // default transfer of fix NEIGH_HISTORY
   nondefault_history_transfer = 0;
 
   single_extra = 10;
@@ -58,18 +58,6 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
   fix_dummy =
       dynamic_cast<FixDummy *>(modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
-}
-
-/* ----------------------------------------------------------------------
-   the pair style in use, for the styles that read its contacts (who: "Compute xxx")
-------------------------------------------------------------------------- */
-
-PairGranularEllipsoid *PairGranularEllipsoid::find(LAMMPS *lmp, const char *who)
-{
-  auto *pair =
-      dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
-  if (!pair) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
-  return pair;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -204,10 +192,7 @@ void PairGranularEllipsoid::coeff(int narg, char **arg)
 
 void PairGranularEllipsoid::init_style()
 {
-  if (!atom->ellipsoid_flag)
-    error->all(FLERR, "Pair granular/ellipsoid requires atom_style ellipsoid");
-  if (!atom->rmass_flag || !atom->angmom_flag || !atom->torque_flag)
-    error->all(FLERR, "Pair granular/ellipsoid requires per-atom mass, angmom and torque");
+  EllipsoidAtoms::require_granular_style(lmp, "Pair granular/ellipsoid");
   if (comm->ghost_velocity == 0)
     error->all(FLERR,
                "Pair granular/ellipsoid requires ghost atoms store velocity: "
@@ -224,8 +209,7 @@ void PairGranularEllipsoid::init_style()
 
   bool any_history = false;
   for (const auto &law : laws) any_history |= law.history_size() > 0;
-  size_history = PAIR_CACHE_SIZE + (any_history ? 3 : 0);
-  tangential_offset = PAIR_CACHE_SIZE;
+  size_history = PairCache::size(any_history);
 
   if (!fix_history) {
     fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
@@ -257,11 +241,8 @@ void PairGranularEllipsoid::init_style()
     }
   }
   const EllipsoidAtoms atoms(atom);
-  for (int i = 0; i < atom->nlocal; i++) {
-    const double *shape = atoms.shape(i);
-    const double r = MAX(shape[0], MAX(shape[1], shape[2]));
-    local[atom->type[i]] = MAX(local[atom->type[i]], r);
-  }
+  for (int i = 0; i < atom->nlocal; i++)
+    local[atom->type[i]] = MAX(local[atom->type[i]], atoms.bounding_radius(i));
   MPI_Allreduce(local.data(), max_bounding_dynamic, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
 }
 
@@ -316,16 +297,12 @@ double PairGranularEllipsoid::init_one(int i, int j)
 
 /* ---------------------------------------------------------------------- */
 
-void PairGranularEllipsoid::update_shapes()
+void PairGranularEllipsoid::update_states()
 {
   const EllipsoidAtoms atoms(atom);
   const int nall = atom->nlocal + atom->nghost;
-  shapes.resize(nall);
-  omegas.resize(nall);
-  for (int i = 0; i < nall; i++) {
-    shapes[i] = atoms.ellipsoid(i);
-    atoms.omega(i, omegas[i].data());
-  }
+  states.resize(nall);
+  for (int i = 0; i < nall; i++) states[i] = atoms.state(i);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -333,36 +310,29 @@ void PairGranularEllipsoid::update_shapes()
 bool PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
                                        ContactGeometry &geometry, ContactForce &result)
 {
-  geometry = evaluate_pair(shapes[i], shapes[j], pipeline, history, counters);
+  geometry = evaluate_pair(states[i].shape, states[j].shape, pipeline, history, counters);
   if (geometry.status != Status::Overlapping && geometry.status != Status::NotConverged)
     return false;
 
   const ForceLaw &force_law = laws[law];
-  ContactMotion motion;
-  motion.v_i = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
-  motion.v_j = Vec3(atom->v[j][0], atom->v[j][1], atom->v[j][2]);
-  motion.omega_i = omegas[i];
-  motion.omega_j = omegas[j];
-  motion.branch_i = geometry.point - shapes[i].center;
-  motion.branch_j = geometry.point - shapes[j].center;
-  const double mi = atom->rmass[i], mj = atom->rmass[j];
-  motion.effective_mass = mi * mj / (mi + mj);
-  if (atom->mask[i] & freeze_group_bit) motion.effective_mass = mj;
-  if (atom->mask[j] & freeze_group_bit) motion.effective_mass = mi;
-
+  const ContactMotion motion =
+      contact_motion(states[i], states[j], geometry.point, atom->mask[i] & freeze_group_bit,
+                     atom->mask[j] & freeze_group_bit);
   // setup and single() look at the stored history without advancing it (dt = 0, on a copy),
   // as pair granular does, so a restart reproduces the forces it was written with
-  double *tangential = nullptr;
-  double scratch[3];
-  if (force_law.history_size() > 0) {
-    tangential = history + tangential_offset;
-    if (!history_update) {
-      std::memcpy(scratch, tangential, sizeof(scratch));
-      tangential = scratch;
-    }
-  }
-  result = force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential);
+  const TangentialHistory tangential(
+      force_law.history_size() > 0 ? PairCache(history).tangential() : nullptr, history_update);
+  result = force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential.get());
   return true;
+}
+
+/* ----------------------------------------------------------------------
+   the history doubles of neighbour jj of i (PairCache layout)
+------------------------------------------------------------------------- */
+
+double *PairGranularEllipsoid::pair_history(int i, int jj) const
+{
+  return &fix_history->firstvalue[i][size_history * jj];
 }
 
 /* ---------------------------------------------------------------------- */
@@ -371,11 +341,9 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   history_update = update->setupflag == 0;
-  update_shapes();
-  if (record_contacts) {
-    contact_list.clear();
-    contact_step = update->ntimestep;
-  }
+  update_states();
+  const bool record = contacts.recording();
+  if (record) contacts.start(update->ntimestep);
 
   double **x = atom->x;
   double **f = atom->f;
@@ -388,27 +356,26 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   int **firsttouch = fix_history->firstflag;
-  double **firsthistory = fix_history->firstvalue;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     int *jlist = firstneigh[i];
     int *touch = firsttouch[i];
-    double *allhistory = firsthistory[i];
     const int jnum = numneigh[i];
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      double *history = &allhistory[size_history * jj];
+      double *history = pair_history(i, jj);
       const int law = law_index[type[i]][type[j]];
 
       ContactGeometry geometry;
       ContactForce result;
       const bool contact = pair_force(i, j, law, history, geometry, result);
       // keep the history of this pair while it caches a plane or a contact normal
-      touch[jj] = history[0] != 0.0 ? 1 : 0;
+      PairCache cache(history);
+      touch[jj] = cache.in_use() ? 1 : 0;
       if (!contact) {
-        for (int k = tangential_offset; k < size_history; k++) history[k] = 0.0;
+        if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
         continue;
       }
 
@@ -430,8 +397,8 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       if (evflag)
         ev_tally_xyz(i, j, nlocal, force->newton_pair, 0.0, 0.0, fi[0], fi[1], fi[2],
                      x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]);
-      if (record_contacts) {
-        Contact c;
+      if (record) {
+        ContactList::Contact c;
         c.i = i;
         c.j = j;
         c.overlap = geometry.overlap;
@@ -440,7 +407,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
           c.point[d] = geometry.point[d];
           c.force[d] = fi[d];
         }
-        contact_list.push_back(c);
+        contacts.add(c);
       }
     }
   }
@@ -457,7 +424,7 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
 {
   for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
   fforce = 0.0;
-  if (static_cast<int>(shapes.size()) < atom->nlocal + atom->nghost) update_shapes();
+  if (static_cast<int>(states.size()) < atom->nlocal + atom->nghost) update_states();
 
   // the stored history of this pair, if the neighbour list still holds it
   std::vector<double> history(size_history, 0.0);
@@ -466,8 +433,7 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
     const int jnum = list->numneigh[i];
     for (int jj = 0; jj < jnum; jj++)
       if ((jlist[jj] & NEIGHMASK) == j) {
-        std::memcpy(history.data(), &fix_history->firstvalue[i][size_history * jj],
-                    size_history * sizeof(double));
+        std::memcpy(history.data(), pair_history(i, jj), size_history * sizeof(double));
         break;
       }
   }
@@ -488,7 +454,7 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
     svector[7 + d] = result.force_i[d];
   }
   // fforce * (x_i - x_j) is the force on i in LAMMPS's convention; use its normal part
-  const Vec3 dx = shapes[i].center - shapes[j].center;
+  const Vec3 dx = states[i].shape.center - states[j].shape.center;
   const double r2 = dx.squaredNorm();
   fforce = r2 > 0.0 ? result.force_i.dot(dx) / r2 : 0.0;
   return 0.0;
@@ -498,11 +464,8 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
 
 void PairGranularEllipsoid::local_counters(double *out) const
 {
-  const long long values[NUM_COUNTERS] = {
-      counters.pairs,      counters.plane_hits,  counters.wang_calls,    counters.contacts,
-      counters.iterations, counters.corrections, counters.not_converged, counters.bounding_rejects,
-      counters.degenerate, counters.continued};
-  for (int k = 0; k < NUM_COUNTERS; k++) out[k] = static_cast<double>(values[k]);
+  for (int k = 0; k < NUM_COUNTERS; k++)
+    out[k] = static_cast<double>(counters.*PIPELINE_COUNTERS[k].member);
 }
 
 void PairGranularEllipsoid::global_counters(double *out) const
@@ -512,38 +475,60 @@ void PairGranularEllipsoid::global_counters(double *out) const
   MPI_Allreduce(local, out, NUM_COUNTERS, MPI_DOUBLE, MPI_SUM, world);
 }
 
+/* ----------------------------------------------------------------------
+   "counters": every counter summed over all ranks (dim 1, table order);
+   "counters/NAME": one of them (dim 0). Collective: every rank must call it.
+------------------------------------------------------------------------- */
+
 void *PairGranularEllipsoid::extract(const char *name, int &dim)
 {
-  dim = 1;
+  static const char prefix[] = "counters/";
   if (std::strcmp(name, "counters") == 0) {
+    dim = 1;
     global_counters(counters_global);
     return (void *) counters_global;
   }
+  if (std::strncmp(name, prefix, sizeof(prefix) - 1) == 0)
+    for (int k = 0; k < NUM_COUNTERS; k++)
+      if (std::strcmp(name + sizeof(prefix) - 1, PIPELINE_COUNTERS[k].name) == 0) {
+        dim = 0;
+        global_counters(counters_global);
+        return (void *) &counters_global[k];
+      }
   return nullptr;
 }
+
+/* ----------------------------------------------------------------------
+   end of run: the counters once for people and once as JSON for programs
+------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::finish()
 {
   double c[NUM_COUNTERS];
   global_counters(c);
   if (comm->me != 0) return;
-  const double mean_iterations = c[3] > 0.0 ? c[4] / c[3] : 0.0;
-  utils::logmesg(lmp,
-                 "granular/ellipsoid: {:.0f} pairs tested, {:.0f} bounding rejects, {:.0f} plane "
-                 "hits, {:.0f} Wang tests, {:.0f} contacts, {:.2f} mean iterations, {:.0f} "
-                 "corrections, {:.0f} not converged, {:.0f} degenerate, {:.0f} continued "
-                 "contacts\n",
-                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6], c[8], c[9]);
-  if (c[6] > 0.0)
+  std::string line = "granular/ellipsoid:", json;
+  for (int k = 0; k < NUM_COUNTERS; k++) {
+    line += fmt::format("{} {:.0f} {}", k ? "," : "", c[k], PIPELINE_COUNTERS[k].label);
+    json += fmt::format("{}\"{}\": {:.0f}", k ? ", " : "", PIPELINE_COUNTERS[k].name, c[k]);
+  }
+  const double contacts_made = c[counter_index(&PipelineCounters::contacts)];
+  const double iterations = c[counter_index(&PipelineCounters::iterations)];
+  line += fmt::format(", {:.2f} mean iterations",
+                      contacts_made > 0.0 ? iterations / contacts_made : 0.0);
+  utils::logmesg(lmp, "{}\ngranular/ellipsoid counters: {{{}}}\n", line, json);
+  const double not_converged = c[counter_index(&PipelineCounters::not_converged)];
+  const double degenerate = c[counter_index(&PipelineCounters::degenerate)];
+  if (not_converged > 0.0)
     error->warning(FLERR,
                    "granular/ellipsoid: {:.0f} contact evaluations did not converge "
                    "within {} iterations (used with their last iterate)",
-                   c[6], pipeline.contact.max_iterations);
-  if (c[8] > 0.0)
+                   not_converged, pipeline.contact.max_iterations);
+  if (degenerate > 0.0)
     error->warning(FLERR,
                    "granular/ellipsoid: {:.0f} pair evaluations had degenerate input "
                    "(non-finite positions or shapes) and gave no force",
-                   c[8]);
+                   degenerate);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -649,7 +634,5 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
 
 double PairGranularEllipsoid::memory_usage()
 {
-  return static_cast<double>(shapes.capacity() * sizeof(Ellipsoid) +
-                             omegas.capacity() * sizeof(Vec3) +
-                             contact_list.capacity() * sizeof(Contact));
+  return static_cast<double>(states.capacity() * sizeof(EllipsoidState)) + contacts.memory_usage();
 }
