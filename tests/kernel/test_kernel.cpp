@@ -142,6 +142,10 @@ TEST(Contact, AccuracyUpToOnePercent)
   std::printf("[accuracy <=1%%] worst normal angle %.3e rad, worst rel overlap err (>=1e-5) "
               "%.3e, worst abs overlap err / size %.3e\n",
               worst_angle, worst_rel, worst_abs);
+  // the table of doc/kernel.md
+  EXPECT_LT(worst_angle, 1e-8);
+  EXPECT_LT(worst_rel, 1e-8);
+  EXPECT_LT(worst_abs, 1e-12);
 }
 
 // Beyond 1 %: the kernel's local minimiser, re-refined in long double from the kernel's own
@@ -176,6 +180,10 @@ TEST(Contact, DeepOverlapsTenAndThirtyPercent)
     std::printf("[accuracy %g] vs long-double local min: angle %.3e rad, rel overlap %.3e; "
                 "%d/%zu cases found a non-global local min (worst excess %.3e rel)\n",
                 rel, worst_local, worst_rel_local, not_global, cases.size(), worst_global_rel);
+    // the table of doc/kernel.md: every case found the global minimum
+    EXPECT_EQ(not_global, 0);
+    EXPECT_LT(worst_local, 1e-8);
+    EXPECT_LT(worst_rel_local, 1e-8);
   }
 }
 
@@ -336,6 +344,9 @@ TEST(Wang, DecisionNeverWrong)
               "disjoint pairs "
               "called Overlapping (widest gap/size %.3e)\n",
               touching, 2 * cases.size(), widest_touch, overlapping_disjoint, widest_od);
+  // the decision band of doc/kernel.md
+  EXPECT_LT(widest_touch, 1e-6);
+  EXPECT_LE(widest_od, 1e-9);
 }
 
 TEST(Wang, SeparatedFarAndDegenerate)
