@@ -10,6 +10,7 @@
 #include "compute_contact_histo.h"
 #include "compute_orient_histo.h"
 #include "compute_packing_ellipsoid.h"
+#include "compute_packing_profile.h"
 #include "fix_pour_ellipsoid.h"
 #include "fix_wall_gran_ellipsoid.h"
 #include "pair_granular_ellipsoid.h"
@@ -55,6 +56,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "compute", "packing/ellipsoid",
                  "volume fraction and coordination number of an ellipsoid deposit",
                  (void *) &create_with_args<ComputePackingEllipsoid, Compute>);
+  register_style(reg, lmp, handle, "compute", "packing/profile",
+                 "solid fraction profile phi(z) of an ellipsoid deposit (exact slab volumes)",
+                 (void *) &create_with_args<ComputePackingProfile, Compute>);
   register_style(reg, lmp, handle, "compute", "contact/histo",
                  "histogram of contact-normal angles with +z",
                  (void *) &create_with_args<ComputeContactHisto, Compute>);

@@ -1,8 +1,11 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: contact force laws, one definition for the pair style and the wall.
 
+   A law is three sub-models (normal, tangential, rolling), each a kind and its parameters.
    The laws see only a ContactGeometry (from the kernel) and a ContactMotion (velocities at
-   the contact), so pair, wall and any other engine feed them the same way. No LAMMPS header.
+   the contact), so pair, wall and any other engine feed them the same way. Parsing,
+   validation, mixing and the restart layout of the parameters come from one table per
+   sub-model (ellipsoid_force_law_table.cpp). No LAMMPS header.
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_FORCE_LAW_H
@@ -31,50 +34,87 @@ struct ContactForce {
   double normal_force = 0.0;       // signed normal magnitude (> 0 repulsive)
 };
 
-struct ForceLaw {
-  enum class Normal { Hertz, HertzMaterial };
-  enum class Tangential { None, Viscous, History };
-  enum class Rolling { None, Constant };
+struct NormalModel {
+  enum class Kind { Hertz, HertzMaterial };
+  Kind kind = Kind::Hertz;
+  double kn = 0.0;               // hertz: F = kn xi^3/2 + damping xi^1/2 dxi/dt
+  double damping = 0.0;          // hertz: the paper's K
+  double youngs = 0.0;           // hertz/material: E (of the like material that gives E*)
+  double poisson = 0.0;          // hertz/material: nu
+  double restitution = 1.0;      // hertz/material: e in (0, 1]
+  bool limit_damping = false;    // clip the normal force at zero (never attractive)
+};
 
-  Normal normal = Normal::Hertz;
-  double kn = 0.0;             // hertz: F = kn xi^3/2 + damping xi^1/2 dxi/dt
-  double damping = 0.0;        // hertz: the paper's K
-  double youngs = 0.0;         // hertz/material: E (both bodies the same material)
-  double poisson = 0.0;        // hertz/material: nu
-  double restitution = 1.0;    // hertz/material: e in (0, 1]
-
-  Tangential tangential = Tangential::None;
+struct TangentialModel {
+  enum class Kind { None, Viscous, History };
+  Kind kind = Kind::None;
   double mu_viscous = 0.0;    // viscous: F_t = -mu F_n v_t (mu in time/length)
   double kt = 0.0;            // history: tangential spring
   double mu = 0.0;            // history: Coulomb coefficient
+};
 
-  Rolling rolling = Rolling::None;
+struct RollingModel {
+  enum class Kind { None, Constant };
+  Kind kind = Kind::None;
   double mu_roll = 0.0;    // constant: |M_r| = mu_roll R* F_n, against relative rolling
+};
+
+struct ForceLaw {
+  NormalModel normal;
+  TangentialModel tangential;
+  RollingModel rolling;
 
   // doubles of per-contact history this law needs (tangential displacement)
-  int history_size() const { return tangential == Tangential::History ? 3 : 0; }
-  // empty when the parameters make sense, else a message naming the bad one
+  int history_size() const { return tangential.kind == TangentialModel::Kind::History ? 3 : 0; }
+  // empty when the parameters lie in their ranges, else a message naming the bad one
   std::string validate() const;
 
   // Force and torques for one contact. history: history_size() doubles (may be null when 0).
   // The normal points from i to j; the force acts at geometry.point.
   ContactForce compute(const ContactGeometry &geometry, const ContactMotion &motion, double dt,
                        double *history) const;
+
+  // k of the elastic normal force k xi^3/2 at effective radius R*
+  double hertz_stiffness(double effective_radius) const;
 };
 
-// Looks up a named material (E, nu, e); false when unknown. Supplied by the caller (the
-// LAMMPS styles read potentials/*.materials), so this file stays free of I/O.
-using MaterialLookup = std::function<bool(const std::string &name, double &youngs, double &poisson,
-                                          double &restitution)>;
+// Duration of an undamped Hertz impact, F = stiffness xi^3/2, at relative normal speed
+// impact_speed: 2 (2/5) B(2/5, 1/2) (5 m*/(4 k))^(2/5) v^(-1/5) ~ 3.218 (m*^2/(k^2 v))^(1/5).
+double hertz_contact_time(double stiffness, double effective_mass, double impact_speed);
+
+// A named material of the materials file, in the units of the simulation.
+struct Material {
+  double youngs, poisson, restitution;
+};
+// Answers a material name: an empty string and the material, or the reason it cannot
+// (unknown name, no unit conversion). Supplied by the caller, so this file stays free of I/O.
+using MaterialLookup = std::function<std::string(const std::string &name, Material &material)>;
 
 // Parses the force-law words shared by pair_coeff and the wall fix:
 //   hertz kn K | hertz/material E nu e | hertz/material NAME
+//   | hertz/material E e nu damping coeff_restitution   (LAMMPS pair granular's order)
 //   [tangential none | viscous mu | history kt mu] [rolling none | constant mu_r]
+//   [limit_damping]
 // Returns the number of words used; on error returns -1 and sets error to a message that
 // names the offending word (callers turn it into a LAMMPS ERROR). Stops at the first word it
 // does not know, so callers can parse their own keywords after it.
 int parse_force_law(const std::vector<std::string> &words, ForceLaw &law, std::string &error,
                     const MaterialLookup &lookup = nullptr);
+
+// The law of unlike types (or of a particle against a wall of another material), parameter
+// by parameter as the tables say: E gives Hertz's reduced modulus
+// 1/E* = (1-nu_a^2)/E_a + (1-nu_b^2)/E_b, the rest geometric means (nu arithmetic).
+// Returns an empty string, or a refusal naming both models when the kinds differ.
+std::string mix_laws(const ForceLaw &a, const ForceLaw &b, ForceLaw &mixed);
+
+// Restart layout: every parameter of every table, in table order, after the kinds.
+int packed_law_size();
+std::vector<double> pack_law(const ForceLaw &law);
+// false when a kind is out of range (a corrupt or foreign record)
+bool unpack_law(const double *values, ForceLaw &law);
+
+// The three model names of a law, e.g. "hertz/material, tangential history, rolling none"
+std::string describe_models(const ForceLaw &law);
 
 }    // namespace EllipsoidDep
 

@@ -15,12 +15,14 @@
 #include "memory.h"
 #include "update.h"
 
+#include "granular_contact_time.h"
 #include "granular_ellipsoid_atoms.h"
 #include "granular_materials.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <string>
 
 using namespace LAMMPS_NS;
@@ -29,19 +31,27 @@ using namespace EllipsoidDep;
 
 /* ----------------------------------------------------------------------
    fix ID group wall/gran/ellipsoid <force-law words> zplane lo hi [xplane lo hi] ...
+       [wall_material E nu | NAME | rigid] [impact_velocity v]
 ------------------------------------------------------------------------- */
 
 FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true), force_flag(0)
+    Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true),
+    impact_velocity(0.0), contact_time_reported(0.0), force_flag(0)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid", error);
   EllipsoidAtoms::require_granular_style(lmp, "Fix wall/gran/ellipsoid");
 
-  // the force law: exactly the words pair_coeff takes
+  // the force law: exactly the words pair_coeff takes; by default the wall is of the
+  // particles' material (as LAMMPS's fix wall/gran), wall_material gives it its own
   std::vector<std::string> words(arg + 3, arg + narg);
+  std::optional<MaterialTable> materials;
+  if (names_a_material(words)) materials.emplace(lmp);
+  const MaterialLookup lookup = materials ? materials->lookup() : MaterialLookup();
   std::string message;
-  const int used = parse_force_law(words, law, message, material_lookup(lmp));
+  const int used = parse_force_law(words, law, message, lookup);
   if (used < 0) error->all(FLERR, "Fix wall/gran/ellipsoid: {}", message);
+  const ForceLaw particle_law = law;
+  bool wall_material_given = false;
 
   // walls
   int iarg = 3 + used;
@@ -52,6 +62,49 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   bool seen[3] = {false, false, false};
   while (iarg < narg) {
     const std::string word = arg[iarg];
+    if (word == "wall_material") {
+      if (wall_material_given)
+        error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
+      wall_material_given = true;
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
+      if (particle_law.normal.kind != NormalModel::Kind::HertzMaterial)
+        error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: wall_material needs hertz/material");
+      ForceLaw wall_side = particle_law;
+      const std::string value = arg[iarg + 1];
+      if (value == "rigid") {
+        // an undeformable wall: no compliance, 1/E* = (1 - nu^2)/E of the particle
+        wall_side.normal.youngs = HUGE_VAL;
+        iarg += 2;
+      } else if (utils::is_double(value)) {
+        if (iarg + 3 > narg)
+          utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid wall_material E nu", error);
+        wall_side.normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+        wall_side.normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        message = wall_side.validate();
+        if (!message.empty())
+          error->all(FLERR, iarg, "Fix wall/gran/ellipsoid wall_material: {}", message);
+        iarg += 3;
+      } else {
+        Material material{};
+        message = lookup(value, material);
+        if (!message.empty())
+          error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid wall_material: {}", message);
+        wall_side.normal.youngs = material.youngs;
+        wall_side.normal.poisson = material.poisson;
+        iarg += 2;
+      }
+      // the pair's mixing rule: the restitution stays the particle law's
+      mix_laws(particle_law, wall_side, law);
+      continue;
+    }
+    if (word == "impact_velocity") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
+      impact_velocity = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(impact_velocity > 0.0))
+        error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid impact_velocity must be > 0");
+      iarg += 2;
+      continue;
+    }
     int dim = -1;
     if (word == "xplane")
       dim = 0;
@@ -62,7 +115,7 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     if (dim < 0)
       error->all(FLERR, iarg,
                  "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane or zplane, or a force-law word)",
+                 "yplane, zplane, wall_material, impact_velocity, or a force-law word)",
                  word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
@@ -146,6 +199,31 @@ void FixWallGranEllipsoid::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix wall/gran/ellipsoid does not support run_style respa");
+  update_contact_time();
+}
+
+/* ----------------------------------------------------------------------
+   shortest Hertz contact time against the walls: per type the lightest atom and the
+   flattest surface, at the impact speed (keyword, or the fastest atom of the group)
+------------------------------------------------------------------------- */
+
+void FixWallGranEllipsoid::update_contact_time()
+{
+  const ContactScales scales = contact_scales(lmp, groupbit);
+  const double speed = impact_velocity > 0.0 ? impact_velocity : scales.fastest_speed;
+  double shortest = 0.0;
+  int type = 0;
+  for (int t = 1; t <= atom->ntypes; t++) {
+    if (!(scales.lightest_mass[t] > 0.0 && speed > 0.0)) continue;
+    const double time = hertz_contact_time(law.hertz_stiffness(scales.flattest_radius[t]),
+                                           scales.lightest_mass[t], speed);
+    if (shortest == 0.0 || time < shortest) {
+      shortest = time;
+      type = t;
+    }
+  }
+  report_contact_time(lmp, "Fix wall/gran/ellipsoid", shortest, fmt::format("type {}", type), speed,
+                      contact_time_reported);
 }
 
 /* ----------------------------------------------------------------------
@@ -315,6 +393,12 @@ void FixWallGranEllipsoid::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  // another tangential model or number of walls in the run that wrote the file
+  if (static_cast<int>(extra[nlocal][m]) != size_history + 1)
+    error->one(FLERR,
+               "Fix wall/gran/ellipsoid: the restart file holds {} history values per atom, "
+               "this fix needs {} (tangential model or walls changed)",
+               static_cast<int>(extra[nlocal][m]) - 1, size_history);
   m++;
   for (int k = 0; k < size_history; k++) history_one[nlocal][k] = extra[nlocal][m++];
 }

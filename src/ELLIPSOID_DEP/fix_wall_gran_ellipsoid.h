@@ -50,6 +50,9 @@ class FixWallGranEllipsoid : public Fix {
   int size_history;        // the law's history size per wall (tangential displacement)
   double **history_one;    // per atom, per wall
   bool history_update;
+  double impact_velocity;          // keyword; 0: the fastest atom of the group
+  double contact_time_reported;    // last Hertz contact time logged
+  void update_contact_time();
 
   std::vector<double> wall_force;        // local sums, 3 per wall
   std::vector<double> wall_force_all;    // summed over ranks

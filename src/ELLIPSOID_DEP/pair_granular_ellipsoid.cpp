@@ -11,6 +11,7 @@
 #include "fix_dummy.h"
 #include "fix_neigh_history.h"
 #include "force.h"
+#include "granular_contact_time.h"
 #include "granular_ellipsoid_atoms.h"
 #include "granular_materials.h"
 #include "memory.h"
@@ -21,6 +22,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
@@ -33,7 +35,8 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
-    freeze_group_bit(0)
+    freeze_group_bit(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
+    contact_time_reported(0.0)
 {
   single_enable = 1;
   no_virial_fdotr_compute = 1;
@@ -99,11 +102,13 @@ void PairGranularEllipsoid::allocate()
 /* ----------------------------------------------------------------------
    pair_style granular/ellipsoid [tolerance t] [iterations n] [correction deg]
                                  [planes yes/no] [wang yes/no] [preset accurate|fast]
+                                 [impact_velocity v]
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::settings(int narg, char **arg)
 {
   PipelineSettings s;
+  double impact = 0.0;
   int iarg = 0;
   while (iarg < narg) {
     const std::string word = arg[iarg];
@@ -139,12 +144,17 @@ void PairGranularEllipsoid::settings(int narg, char **arg)
       } else {
         error->all(FLERR, iarg + 1, "Unknown pair_style granular/ellipsoid preset '{}'", preset);
       }
+    } else if (word == "impact_velocity") {
+      impact = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(impact > 0.0))
+        error->all(FLERR, iarg + 1, "pair_style granular/ellipsoid impact_velocity must be > 0");
     } else {
       error->all(FLERR, iarg, "Unknown pair_style granular/ellipsoid keyword '{}'", word);
     }
     iarg += 2;
   }
   pipeline = s;
+  impact_velocity = impact;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -156,8 +166,7 @@ int PairGranularEllipsoid::add_law(const ForceLaw &law)
 }
 
 /* ----------------------------------------------------------------------
-   pair_coeff I J hertz kn K | hertz/material E nu e | hertz/material NAME
-              [tangential ...] [rolling ...]
+   pair_coeff I J <force-law words> (see parse_force_law)
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::coeff(int narg, char **arg)
@@ -172,7 +181,10 @@ void PairGranularEllipsoid::coeff(int narg, char **arg)
   std::vector<std::string> words(arg + 2, arg + narg);
   ForceLaw law;
   std::string message;
-  const int used = parse_force_law(words, law, message, material_lookup(lmp));
+  std::optional<MaterialTable> materials;
+  if (names_a_material(words)) materials.emplace(lmp);
+  const int used =
+      parse_force_law(words, law, message, materials ? materials->lookup() : MaterialLookup());
   if (used < 0) error->all(FLERR, "pair_coeff granular/ellipsoid: {}", message);
   if (used != static_cast<int>(words.size()))
     error->all(FLERR, used + 2, "Unknown pair_coeff granular/ellipsoid keyword '{}'", words[used]);
@@ -208,8 +220,23 @@ void PairGranularEllipsoid::init_style()
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
 
   bool any_history = false;
-  for (const auto &law : laws) any_history |= law.history_size() > 0;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      ForceLaw law;
+      std::string refusal;
+      any_history |= law_of_pair(i, j, law, refusal) && law.history_size() > 0;
+    }
   size_history = PairCache::size(any_history);
+  // the history fix reads its restart values with its own size: a different size would
+  // misread every pair
+  if (!fix_history && restart_history_size > 0 && restart_history_size != size_history)
+    error->all(FLERR,
+               "Pair granular/ellipsoid: the restart file holds {} history values per pair, "
+               "the force laws now need {}: a tangential model with history ({}) cannot be "
+               "added or removed across a restart; keep the restart's tangential models, or "
+               "continue from write_data/read_data (which starts every contact afresh)",
+               restart_history_size, size_history,
+               restart_history_size > size_history ? "removed" : "added");
 
   if (!fix_history) {
     fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
@@ -244,6 +271,61 @@ void PairGranularEllipsoid::init_style()
   for (int i = 0; i < atom->nlocal; i++)
     local[atom->type[i]] = MAX(local[atom->type[i]], atoms.bounding_radius(i));
   MPI_Allreduce(local.data(), max_bounding_dynamic, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+
+  update_contact_time();
+}
+
+/* ----------------------------------------------------------------------
+   the law of type pair (i, j): its own, or mixed from those of i i and j j (init_one stores
+   it; init_style needs it earlier). false with a reason when there is none.
+------------------------------------------------------------------------- */
+
+bool PairGranularEllipsoid::law_of_pair(int i, int j, ForceLaw &law, std::string &refusal) const
+{
+  if (setflag[i][j]) {
+    law = laws[law_index[i][j]];
+    return true;
+  }
+  if (law_index[i][i] < 0 || law_index[j][j] < 0) {
+    refusal = fmt::format("coefficients for types {} {} are not set", i, j);
+    return false;
+  }
+  refusal = mix_laws(laws[law_index[i][i]], laws[law_index[j][j]], law);
+  if (refusal.empty()) return true;
+  refusal = fmt::format("types {} and {} use different models: {}; set pair_coeff {} {} explicitly",
+                        i, j, refusal, i, j);
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   shortest Hertz contact time over the type pairs with atoms: the lightest atoms and the
+   flattest surfaces of each type, at the impact speed (keyword, or twice the fastest atom)
+------------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::update_contact_time()
+{
+  const ContactScales scales = contact_scales(lmp, 1);
+  const double speed = impact_velocity > 0.0 ? impact_velocity : 2.0 * scales.fastest_speed;
+  contact_time = 0.0;
+  int ti = 0, tj = 0;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      const double mi = scales.lightest_mass[i], mj = scales.lightest_mass[j];
+      if (!(mi > 0.0 && mj > 0.0 && speed > 0.0)) continue;
+      ForceLaw law;
+      std::string refusal;
+      if (!law_of_pair(i, j, law, refusal)) continue;    // init_one reports it
+      const double ri = scales.flattest_radius[i], rj = scales.flattest_radius[j];
+      const double time = hertz_contact_time(law.hertz_stiffness(effective_radius(ri, rj)),
+                                             mi * mj / (mi + mj), speed);
+      if (contact_time == 0.0 || time < contact_time) {
+        contact_time = time;
+        ti = i;
+        tj = j;
+      }
+    }
+  LAMMPS_NS::report_contact_time(lmp, "Pair granular/ellipsoid", contact_time,
+                                 fmt::format("types {} {}", ti, tj), speed, contact_time_reported);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -251,29 +333,10 @@ void PairGranularEllipsoid::init_style()
 double PairGranularEllipsoid::init_one(int i, int j)
 {
   if (setflag[i][j] == 0) {
-    if (law_index[i][i] < 0 || law_index[j][j] < 0)
-      error->all(FLERR, "Pair granular/ellipsoid coefficients for types {} {} are not set", i, j);
-    // mix: geometric means of like parameters; the models themselves must agree
-    const ForceLaw &a = laws[law_index[i][i]];
-    const ForceLaw &b = laws[law_index[j][j]];
-    if (a.normal != b.normal || a.tangential != b.tangential || a.rolling != b.rolling)
-      error->all(FLERR,
-                 "Pair granular/ellipsoid: types {} and {} use different models; set "
-                 "pair_coeff {} {} explicitly",
-                 i, j, i, j);
-    auto geom = [](double x, double y) {
-      return std::sqrt(x * y);
-    };
-    ForceLaw mixed = a;
-    mixed.kn = geom(a.kn, b.kn);
-    mixed.damping = geom(a.damping, b.damping);
-    mixed.youngs = geom(a.youngs, b.youngs);
-    mixed.poisson = 0.5 * (a.poisson + b.poisson);
-    mixed.restitution = geom(a.restitution, b.restitution);
-    mixed.mu_viscous = geom(a.mu_viscous, b.mu_viscous);
-    mixed.kt = geom(a.kt, b.kt);
-    mixed.mu = geom(a.mu, b.mu);
-    mixed.mu_roll = geom(a.mu_roll, b.mu_roll);
+    ForceLaw mixed;
+    std::string refusal;
+    if (!law_of_pair(i, j, mixed, refusal))
+      error->all(FLERR, "Pair granular/ellipsoid: {}", refusal);
     // mixed laws are recomputed at every init: reuse their slot
     if (law_index[i][j] >= 0)
       laws[law_index[i][j]] = mixed;
@@ -462,6 +525,23 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
 
 /* ---------------------------------------------------------------------- */
 
+/* ----------------------------------------------------------------------
+   the counters (extract_counters), or "contact_time": the shortest Hertz contact time of
+   the last run start (dim 0; 0: no moving atoms to judge by)
+------------------------------------------------------------------------- */
+
+void *PairGranularEllipsoid::extract(const char *name, int &dim)
+{
+  if (void *counter = extract_counters(name, dim)) return counter;
+  if (std::strcmp(name, "contact_time") == 0) {
+    dim = 0;
+    return (void *) &contact_time;
+  }
+  return nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
 void PairGranularEllipsoid::write_restart_settings(FILE *fp)
 {
   fwrite(&pipeline.contact.tolerance, sizeof(double), 1, fp);
@@ -471,6 +551,7 @@ void PairGranularEllipsoid::write_restart_settings(FILE *fp)
   const int planes = pipeline.use_planes ? 1 : 0, wang = pipeline.use_wang ? 1 : 0;
   fwrite(&planes, sizeof(int), 1, fp);
   fwrite(&wang, sizeof(int), 1, fp);
+  fwrite(&impact_velocity, sizeof(double), 1, fp);
 }
 
 void PairGranularEllipsoid::read_restart_settings(FILE *fp)
@@ -483,6 +564,7 @@ void PairGranularEllipsoid::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, &pipeline.contact.wang_band, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &planes, sizeof(int), 1, fp, nullptr, error);
     utils::sfread(FLERR, &wang, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &impact_velocity, sizeof(double), 1, fp, nullptr, error);
   }
   MPI_Bcast(&pipeline.contact.tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&pipeline.contact.max_iterations, 1, MPI_INT, 0, world);
@@ -490,32 +572,30 @@ void PairGranularEllipsoid::read_restart_settings(FILE *fp)
   MPI_Bcast(&pipeline.contact.wang_band, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&planes, 1, MPI_INT, 0, world);
   MPI_Bcast(&wang, 1, MPI_INT, 0, world);
+  MPI_Bcast(&impact_velocity, 1, MPI_DOUBLE, 0, world);
   pipeline.use_planes = planes == 1;
   pipeline.use_wang = wang == 1;
 }
 
-// The force laws are plain structs of enums and doubles: written field by field.
-static void write_law(FILE *fp, const ForceLaw &law)
-{
-  const int models[3] = {static_cast<int>(law.normal), static_cast<int>(law.tangential),
-                         static_cast<int>(law.rolling)};
-  const double values[9] = {law.kn,         law.damping, law.youngs, law.poisson, law.restitution,
-                            law.mu_viscous, law.kt,      law.mu,     law.mu_roll};
-  fwrite(models, sizeof(int), 3, fp);
-  fwrite(values, sizeof(double), 9, fp);
-}
+/* ----------------------------------------------------------------------
+   the laws as their tables lay them out (pack_law), after the record size so that a file
+   of another layout is refused, then the per-pair history size of the run that wrote it
+------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
-  const int nlaws = static_cast<int>(laws.size());
+  const int nlaws = static_cast<int>(laws.size()), record = packed_law_size();
   fwrite(&nlaws, sizeof(int), 1, fp);
-  for (const auto &law : laws) write_law(fp, law);
+  fwrite(&record, sizeof(int), 1, fp);
+  for (const auto &law : laws) fwrite(pack_law(law).data(), sizeof(double), record, fp);
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
       fwrite(&law_index[i][j], sizeof(int), 1, fp);
     }
+  const int history = fix_history ? fix_history->get_dnum() : 0;
+  fwrite(&history, sizeof(int), 1, fp);
 }
 
 void PairGranularEllipsoid::read_restart(FILE *fp)
@@ -523,31 +603,21 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
   read_restart_settings(fp);
   allocate();
   const int me = comm->me;
-  int nlaws = 0;
-  if (me == 0) utils::sfread(FLERR, &nlaws, sizeof(int), 1, fp, nullptr, error);
-  MPI_Bcast(&nlaws, 1, MPI_INT, 0, world);
-  laws.assign(nlaws, ForceLaw());
+  int sizes[2] = {0, 0};    // laws, doubles per law
+  if (me == 0) utils::sfread(FLERR, sizes, sizeof(int), 2, fp, nullptr, error);
+  MPI_Bcast(sizes, 2, MPI_INT, 0, world);
+  if (sizes[1] != packed_law_size())
+    error->all(FLERR,
+               "Pair granular/ellipsoid: the restart file's force laws have {} values each, "
+               "this version has {}: the file was written by another version",
+               sizes[1], packed_law_size());
+  laws.assign(sizes[0], ForceLaw());
+  std::vector<double> values(sizes[1]);
   for (auto &law : laws) {
-    int models[3] = {0, 0, 0};
-    double values[9];
-    if (me == 0) {
-      utils::sfread(FLERR, models, sizeof(int), 3, fp, nullptr, error);
-      utils::sfread(FLERR, values, sizeof(double), 9, fp, nullptr, error);
-    }
-    MPI_Bcast(models, 3, MPI_INT, 0, world);
-    MPI_Bcast(values, 9, MPI_DOUBLE, 0, world);
-    law.normal = static_cast<ForceLaw::Normal>(models[0]);
-    law.tangential = static_cast<ForceLaw::Tangential>(models[1]);
-    law.rolling = static_cast<ForceLaw::Rolling>(models[2]);
-    law.kn = values[0];
-    law.damping = values[1];
-    law.youngs = values[2];
-    law.poisson = values[3];
-    law.restitution = values[4];
-    law.mu_viscous = values[5];
-    law.kt = values[6];
-    law.mu = values[7];
-    law.mu_roll = values[8];
+    if (me == 0) utils::sfread(FLERR, values.data(), sizeof(double), sizes[1], fp, nullptr, error);
+    MPI_Bcast(values.data(), sizes[1], MPI_DOUBLE, 0, world);
+    if (!unpack_law(values.data(), law))
+      error->all(FLERR, "Pair granular/ellipsoid: the restart file holds an unknown force model");
   }
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
@@ -557,6 +627,8 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
       setflag[i][j] = pair[0];
       law_index[i][j] = law_index[j][i] = pair[1];
     }
+  if (me == 0) utils::sfread(FLERR, &restart_history_size, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&restart_history_size, 1, MPI_INT, 0, world);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -43,6 +43,7 @@ class PairGranularEllipsoid : public Pair {
   // order of EllipsoidDep::PIPELINE_COUNTERS (also the order of compute pair's vector).
   void local_counters(double *out) const;
   void global_counters(double *out) const;
+  void *extract_counters(const char *name, int &dim);    // null: not a counter name
   static constexpr int NUM_COUNTERS = EllipsoidDep::NUM_PIPELINE_COUNTERS;
 
  protected:
@@ -74,6 +75,16 @@ class PairGranularEllipsoid : public Pair {
 
   void allocate();
   int add_law(const EllipsoidDep::ForceLaw &law);
+  bool law_of_pair(int i, int j, EllipsoidDep::ForceLaw &law, std::string &refusal) const;
+
+  // per-pair history size of the run that wrote the restart file this pair was read from
+  // (0: none read, or no history written)
+  int restart_history_size;
+  // shortest Hertz contact time over the type pairs (granular_contact_time.h); 0: undefined
+  double impact_velocity;    // pair_style impact_velocity; 0: twice the largest atom speed
+  double contact_time;
+  double contact_time_reported;
+  void update_contact_time();
 };
 
 }    // namespace LAMMPS_NS

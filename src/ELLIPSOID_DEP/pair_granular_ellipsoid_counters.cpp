@@ -28,11 +28,12 @@ void PairGranularEllipsoid::global_counters(double *out) const
 }
 
 /* ----------------------------------------------------------------------
-   "counters": every counter summed over all ranks (dim 1, table order);
+   Pair::extract of the counters: "counters": every counter summed over all ranks (dim 1,
+   table order);
    "counters/NAME": one of them (dim 0). Collective: every rank must call it.
 ------------------------------------------------------------------------- */
 
-void *PairGranularEllipsoid::extract(const char *name, int &dim)
+void *PairGranularEllipsoid::extract_counters(const char *name, int &dim)
 {
   static const char prefix[] = "counters/";
   if (std::strcmp(name, "counters") == 0) {

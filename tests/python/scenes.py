@@ -34,3 +34,37 @@ timestep 2e-4
 thermo_style custom step ke
 {extra}
 """
+
+
+def sphere_over_wall(radius, height, wall, velocity=(0.0, 0.0, 0.0), units="lj"):
+    """One sphere of density 1 at height z over `fix w all wall/gran/ellipsoid {wall}` in a
+    box periodic in x and y (its z boundary is fixed)."""
+    return f"""
+units {units}
+atom_style ellipsoid
+boundary p p f
+comm_modify vel yes
+region box block -2 2 -2 2 0 4
+create_box 1 box
+create_atoms 1 single 0 0 {height}
+set atom 1 shape {2 * radius} {2 * radius} {2 * radius}
+set atom 1 density 1.0
+velocity all set {velocity[0]} {velocity[1]} {velocity[2]}
+fix w all wall/gran/ellipsoid {wall}
+"""
+
+
+def empty_pair_box(units="lj"):
+    """A box of one ellipsoid with pair_style granular/ellipsoid defined and no coefficients:
+    for what pair_coeff accepts and refuses."""
+    return f"""
+units {units}
+atom_style ellipsoid
+comm_modify vel yes
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 single 1 1 1
+set type 1 shape 1.0 1.0 1.0
+set type 1 density 1.0
+pair_style granular/ellipsoid
+"""

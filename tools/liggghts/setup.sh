@@ -103,7 +103,7 @@ sync_adapter() {
   # the contact kernel: every src/ELLIPSOID_DEP/ellipsoid_* file but the LAMMPS plugin entry
   # and the force laws (LIGGGHTS uses its own)
   for f in "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.h "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.cpp; do
-    case "$(basename "$f")" in ellipsoid_dep_plugin.cpp | ellipsoid_force_law.*) continue ;; esac
+    case "$(basename "$f")" in ellipsoid_dep_plugin.cpp | ellipsoid_force_law*) continue ;; esac
     sync_file "$f" "$SRC/$(basename "$f")"
   done
 }

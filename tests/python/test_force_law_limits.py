@@ -1,0 +1,218 @@
+"""Force-law options at their limits: limit_damping, mixing refusals, restarts that change the
+tangential model, and the Hertz contact time reported at run start.
+
+Specification:
+- without limit_damping (the default, as in LAMMPS's pair granular) a fast-separating contact
+  is attractive, F_n = kn xi^3/2 + K xi^1/2 dxi/dt < 0; with it F_n = 0; for pair and wall;
+- unlike types of different models are refused with both models named;
+- the restart file keeps every law parameter (limit_damping included) in table order;
+- a restart read by an input that adds or removes a tangential history is an ERROR;
+- at run start the pair and the wall report the undamped Hertz contact time of their
+  shortest contact, 2 (2/5) B(2/5, 1/2) (5 m*/(4 k))^(2/5) v^(-1/5), and warn when the
+  timestep exceeds 1/10 of it.
+"""
+import math
+import re
+
+import pytest
+from scipy.special import beta
+
+import ed_helpers_pour as h
+import scenes
+from conftest import new_lammps
+
+KN, K = 1.0e4, 100.0
+RADIUS, OVERLAP, SPEED = 0.5, 1.0e-3, 1.0
+MASS = 4.0 / 3.0 * math.pi * RADIUS**3    # density 1
+
+
+def two_spheres(extra_coeff="", speed=SPEED, pair_style="granular/ellipsoid", dt=1e-4,
+                coeffs=None):
+    """Two unit-density spheres (types 1 and 2) along x overlapping by OVERLAP; each moves
+    away from the other at speed/2 (speed < 0: towards). coeffs: the pair_coeff lines
+    (default: one law for all types)."""
+    coeffs = coeffs or [f"* * hertz {KN} {K} {extra_coeff}"]
+    lines = "\n".join("pair_coeff " + c for c in coeffs)
+    return f"""
+units lj
+atom_style ellipsoid
+atom_modify map array
+comm_modify vel yes
+region box block -3 3 -3 3 -3 3
+create_box 2 box
+create_atoms 1 single {-RADIUS + OVERLAP / 2} 0 0
+create_atoms 2 single {RADIUS - OVERLAP / 2} 0 0
+set type * shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}
+set type * density 1.0
+set atom 1 vx {-speed / 2}
+set atom 2 vx {speed / 2}
+pair_style {pair_style}
+{lines}
+timestep {dt}
+"""
+
+
+def force_on_first(lmp):
+    return lmp.numpy.extract_atom("f")[lmp.map_atom(1)][0]
+
+
+def separating_force(extra_coeff):
+    lmp = new_lammps()
+    lmp.commands_string(two_spheres(extra_coeff) + "run 0\n")
+    f = force_on_first(lmp)
+    lmp.close()
+    return f
+
+
+def test_pair_limit_damping():
+    # F_n on atom 1 is -f_x: without the limit, damping beats the elastic force
+    expected = KN * OVERLAP**1.5 - K * OVERLAP**0.5 * SPEED
+    assert expected < 0.0
+    assert -separating_force("") == pytest.approx(expected, rel=1e-12)
+    assert separating_force("limit_damping") == 0.0
+    assert separating_force("tangential history 1e3 0.5 limit_damping") == 0.0
+
+
+def wall_force_leaving(extra):
+    lmp = new_lammps()
+    lmp.commands_string(scenes.sphere_over_wall(RADIUS, RADIUS - OVERLAP,
+                                                f"hertz {KN} {K} {extra} zplane 0 NULL",
+                                                velocity=(0, 0, SPEED)) + "run 0\n")
+    fz = -lmp.extract_fix("w", 0, 1, 2)    # the fix's vector is the force on the wall
+    lmp.close()
+    return fz
+
+
+def test_wall_limit_damping():
+    expected = KN * OVERLAP**1.5 - K * OVERLAP**0.5 * SPEED
+    assert wall_force_leaving("") == pytest.approx(expected, rel=1e-12)
+    assert wall_force_leaving("limit_damping") == 0.0
+
+
+def test_unlike_models_refusal_names_both():
+    lmp = new_lammps()
+    try:
+        with pytest.raises(Exception, match=re.escape(
+                "types 1 and 2 use different models: cannot mix 'hertz, tangential none, "
+                "rolling none' with 'hertz, tangential none, rolling none, limit_damping'")):
+            lmp.commands_string(two_spheres(coeffs=[f"1 1 hertz {KN} {K}",
+                                                    f"2 2 hertz {KN} {K} limit_damping"]) +
+                                "run 0\n")
+    finally:
+        lmp.close()
+
+
+def test_restart_keeps_every_parameter(tmp_path):
+    """Unlike types mixed, limit_damping on: the forces after read_restart are the same."""
+    path = tmp_path / "law.restart"
+    lmp = new_lammps()
+    lmp.commands_string(two_spheres(coeffs=[
+        f"1 1 hertz {KN} {K} rolling constant 0.1 limit_damping",
+        f"2 2 hertz {2 * KN} {K} rolling constant 0.2 limit_damping"]) + "run 0\n")
+    before = force_on_first(lmp)
+    lmp.command(f"write_restart {path}")
+    lmp.close()
+    lmp = new_lammps()
+    lmp.commands_string(f"read_restart {path}\ncomm_modify vel yes\nrun 0\n")
+    after = force_on_first(lmp)
+    lmp.command("set atom 1 vx 0.5")    # approaching now: a repulsive, mixed-stiffness force
+    lmp.command("set atom 2 vx -0.5")
+    lmp.command("run 0")
+    approaching = force_on_first(lmp)
+    lmp.close()
+    assert before == after == 0.0
+    kn_mixed = math.sqrt(KN * 2 * KN)
+    assert -approaching == pytest.approx(kn_mixed * OVERLAP**1.5 + K * OVERLAP**0.5 * SPEED,
+                                         rel=1e-12)
+
+
+def restart_then(path, written_input, read_input):
+    """Runs written_input and writes a restart at its end; then, in a new instance,
+    read_restart and read_input."""
+    lmp = new_lammps()
+    lmp.commands_string(written_input + f"fix i all nve/asphere\nrun 10\nwrite_restart {path}\n")
+    lmp.close()
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(f"read_restart {path}\ncomm_modify vel yes\n" + read_input)
+    finally:
+        lmp.close()
+
+
+@pytest.mark.parametrize("written,read", [("history 1e3 0.5", "none"),
+                                          ("none", "history 1e3 0.5"),
+                                          ("viscous 0.1", "history 1e3 0.5")])
+def test_restart_with_another_history_size_is_refused(tmp_path, written, read):
+    with pytest.raises(Exception, match=r"the restart file holds \d+ history values per pair, "
+                                        r"the force laws now need \d+"):
+        restart_then(tmp_path / "pair.restart", two_spheres(f"tangential {written}", speed=-SPEED),
+                     f"pair_coeff * * hertz {KN} {K} tangential {read}\nrun 0\n")
+
+
+def test_restart_with_the_same_history_size_continues(tmp_path):
+    restart_then(tmp_path / "pair.restart",
+                 two_spheres("tangential history 1e3 0.5", speed=-SPEED),
+                 f"pair_coeff * * hertz {KN} {K} tangential history 2e3 0.3\nrun 0\n")
+
+
+# ---- the Hertz contact time -----------------------------------------------------------------
+
+def hertz_time(stiffness, m_eff, speed):
+    integral = 0.4 * beta(0.4, 0.5)
+    return 2 * integral * (5 * m_eff * speed**2 / (4 * stiffness))**0.4 / speed
+
+
+def pair_contact_time(tmp_path, dt, extra_style=""):
+    lmp = h.new_lammps(tmp_path)
+    lmp.commands_string(two_spheres(speed=-SPEED, dt=dt,
+                                    pair_style=f"granular/ellipsoid {extra_style}") + "run 0\n")
+    t = lmp.extract_pair("contact_time")
+    log = h.read_log(lmp)
+    lmp.close()
+    return t, log
+
+
+def test_pair_contact_time_and_warning(tmp_path):
+    # the two spheres approach at SPEED: twice the fastest atom
+    expected = hertz_time(KN, MASS / 2, SPEED)
+    t, log = pair_contact_time(tmp_path, dt=expected / 50)
+    assert t == pytest.approx(expected, rel=1e-12)
+    assert "Pair granular/ellipsoid: Hertz contact time" in log
+    assert "exceeds" not in log
+    t, log = pair_contact_time(tmp_path, dt=expected / 5)
+    assert re.search(r"WARNING: Pair granular/ellipsoid: timestep \S+ exceeds 0.1 of the Hertz "
+                     r"contact time", log)
+    t, _ = pair_contact_time(tmp_path, dt=1e-4, extra_style="impact_velocity 32")
+    assert t == pytest.approx(expected / 2, rel=1e-12)    # v^(-1/5)
+
+
+def test_wall_contact_time_and_warning(tmp_path):
+    def run(dt):
+        lmp = h.new_lammps(tmp_path)
+        lmp.commands_string(scenes.sphere_over_wall(RADIUS, 1.0, f"hertz {KN} {K} zplane 0 NULL",
+                                                    velocity=(0, 0, -SPEED)) +
+                            f"timestep {dt}\nrun 0\n")
+        log = h.read_log(lmp)
+        lmp.close()
+        return log
+
+    expected = hertz_time(KN, MASS, SPEED)
+    log = run(expected / 50)
+    found = re.search(r"Fix wall/gran/ellipsoid: Hertz contact time (\S+) \(type 1", log)
+    assert found and float(found.group(1)) == pytest.approx(expected, rel=1e-5)
+    assert "exceeds" not in log
+    assert re.search(r"WARNING: Fix wall/gran/ellipsoid: timestep \S+ exceeds 0.1",
+                     run(expected / 5))
+
+
+def test_wall_restart_with_other_walls_is_refused(tmp_path):
+    """The wall's per-atom tangential history: 3 values per wall; another number of walls
+    after read_restart is an ERROR, the same walls continue."""
+    path = tmp_path / "wall.restart"
+    law = f"hertz {KN} {K} tangential history 1e3 0.5"
+    scene = scenes.sphere_over_wall(RADIUS, RADIUS - OVERLAP, f"{law} zplane 0 NULL",
+                                    velocity=(SPEED, 0, 0))
+    restart_then(path, scene, f"fix w all wall/gran/ellipsoid {law} zplane 0 NULL\nrun 0\n")
+    with pytest.raises(Exception, match=r"the restart file holds 3 history values per atom, "
+                                        r"this fix needs 6"):
+        restart_then(path, scene, f"fix w all wall/gran/ellipsoid {law} zplane 0 4\nrun 0\n")

@@ -1,0 +1,308 @@
+"""tools/pores.py (doc/howto_pores.md) against analytic results and independent oracles.
+
+- simple cubic lattice of touching spheres (diameter d = 1): porosity 1 - pi/6, specific
+  surface pi/d (also for slab planes that cut the spheres: Archimedes' zones), largest
+  inscribed pore radius (sqrt(3) - 1) d / 2, pore space connected from bottom to top;
+- surface areas: prolate and oblate spheroids against their closed forms, a triaxial ellipsoid
+  against a scipy double quadrature in the usual (theta, phi) parametrisation, cut spheroids
+  against the surface-of-revolution integral;
+- local thickness against a brute-force search over all ball centres on a small periodic grid;
+  periodic connectivity on hand-made images;
+- voxel porosity converging to the exact porosity as the voxel shrinks;
+- a real (small) deposit of examples/deposit/in.deposit: porosity from the dump against
+  1 - phi of compute packing/ellipsoid, and the whole tool on its run folder.
+"""
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+from scipy import integrate
+
+import pores
+from conftest import new_lammps, root_dir
+
+D = 1.0
+SPHERE_R = 0.5 * D
+
+
+def cubic_lattice(n=2, layers=8):
+    """touching spheres of diameter 1 at the centres of unit cells; box n x n x layers"""
+    c = np.array([[i + 0.5, j + 0.5, k + 0.5]
+                  for i in range(n) for j in range(n) for k in range(layers)])
+    p = pores.Particles(c, np.tile([1.0, 0, 0, 0], (len(c), 1)), np.full((len(c), 3), SPHERE_R))
+    return p, np.array([[0, n], [0, n], [0, layers]], dtype=float)
+
+
+def random_rotations(rng, n):
+    q = rng.normal(size=(n, 4))
+    return q / np.linalg.norm(q, axis=1)[:, None]
+
+
+# ---------------------------------------------------------------------------------------------
+# simple cubic lattice
+
+
+@pytest.mark.parametrize("zlo,zhi", [(2.0, 6.0), (2.25, 6.25), (1.7, 4.7)])
+def test_cubic_lattice_exact_porosity_and_surface(zlo, zhi):
+    """whole periods of the lattice in z: porosity 1 - pi/6; any slab: S_v = pi / d, since a
+    sphere's zone area is 2 pi R x height (the cut spheres go through the quadrature)"""
+    p, box = cubic_lattice()
+    v_slab = 4.0 * (zhi - zlo)
+    porosity = 1 - (pores.slab_fraction(p, zlo, zhi) * p.volumes).sum() / v_slab
+    assert porosity == pytest.approx(1 - math.pi / 6, rel=1e-13)
+    area, change, ncut = pores.slab_surface(p, zlo, zhi)
+    assert area / v_slab == pytest.approx(math.pi / D, rel=1e-12)
+    assert ncut == (0 if zlo == 2.0 else 8)
+    assert change < 1e-12
+
+
+def test_cubic_lattice_voxels():
+    """voxel 2/33: a voxel centre sits on the cell centre, where the largest inscribed ball is
+    (radius R = (sqrt(3) - 1) d / 2); voxel distances are to solid voxel centres, so the measured
+    radius lies in [R, R + sqrt(3) h / 2]"""
+    p, box = cubic_lattice()
+    h = 2.0 / 33.0
+    r = pores.analyse(p, box, 2.0, 6.0, voxel=h)
+    R = (math.sqrt(3) - 1) * D / 2
+    assert r["voxel_size"] == pytest.approx(h, rel=1e-12)
+    assert r["porosity"] == pytest.approx(1 - math.pi / 6, rel=1e-13)
+    assert r["specific_surface"] == pytest.approx(math.pi / D, rel=1e-12)
+    assert R <= r["largest_inscribed_radius"] <= R + math.sqrt(3) / 2 * h
+    assert r["connected_z"] and r["connected_pore_fraction"] == 1.0
+    # straight vertical channels along the cell edges; other paths detour a little
+    assert 1.0 < r["geometric_tortuosity"] < 1.2
+    psd = r["pore_size_distribution"]
+    assert sum(psd["volume_fraction"]) == pytest.approx(1.0, rel=1e-12)
+    # the largest local thickness is the largest ball, to one radius level
+    largest = psd["radius"][int(np.nonzero(psd["volume_fraction"])[0].max())]
+    assert abs(largest - R) <= 1.5 * h
+    assert abs(r["porosity_voxel"] - r["porosity"]) < 0.01
+    assert r["kozeny_carman_permeability"] == pytest.approx(
+        (1 - math.pi / 6) ** 3 / (5 * math.pi ** 2), rel=1e-12)
+    assert r["convergence"]["voxel_size"] == pytest.approx([h, 2 * h])
+
+
+# ---------------------------------------------------------------------------------------------
+# surface areas
+
+
+def test_spheroid_areas_closed_form():
+    a, c = 1.0, 2.5    # prolate: a = b < c
+    e = math.sqrt(1 - a * a / (c * c))
+    prolate = 2 * math.pi * a * a * (1 + c / (a * e) * math.asin(e))
+    a, c = 2.0, 0.7    # oblate: a = b > c
+    e = math.sqrt(1 - c * c / (a * a))
+    oblate = 2 * math.pi * a * a * (1 + (1 - e * e) / e * math.atanh(e))
+    got = pores.ellipsoid_area(np.array([[1.0, 2.5, 1.0], [0.7, 2.0, 2.0]]))
+    np.testing.assert_allclose(got, [prolate, oblate], rtol=1e-13)
+    assert pores.ellipsoid_area(np.array([0.3, 0.3, 0.3])) == pytest.approx(4 * math.pi * 0.09,
+                                                                           rel=1e-14)
+
+
+def test_triaxial_area_quadrature():
+    a, b, c = 1.3, 0.8, 0.35
+
+    def element(phi, theta):    # |r_theta x r_phi| of (a sin t cos p, b sin t sin p, c cos t)
+        st, ct = math.sin(theta), math.cos(theta)
+        return st * math.sqrt((b * c * st * math.cos(phi)) ** 2 + (a * c * st * math.sin(phi)) ** 2
+                              + (a * b * ct) ** 2)
+
+    ref, _ = integrate.dblquad(element, 0, math.pi, 0, 2 * math.pi, epsabs=1e-13, epsrel=1e-13)
+    assert pores.ellipsoid_area(np.array([a, b, c])) == pytest.approx(ref, rel=1e-11)
+    # the zone quadrature over the whole surface, for tilted copies
+    rng = np.random.default_rng(3)
+    R = pores.rotation_matrices(random_rotations(rng, 5))
+    semi = np.tile([a, b, c], (5, 1))
+    whole, change = pores.converged_zone_area(semi, R, -np.ones(5), np.ones(5))
+    assert change <= 1e-12
+    np.testing.assert_allclose(whole, ref, rtol=1e-11)
+
+
+def test_cut_spheroid_against_surface_of_revolution():
+    """vertical spheroid (semi-axes a, a, c along z), cut between z1 and z2: area
+    int 2 pi rho sqrt(1 + rho'^2) dz with rho(z) = a sqrt(1 - z^2 / c^2)"""
+    for a, c in ((0.6, 1.4), (1.1, 0.4)):
+        def ring(z):
+            u = 1 - z * z / (c * c)
+            return 2 * math.pi * a * math.sqrt(u + (a * z / (c * c)) ** 2)
+        for z1, z2 in ((-0.3 * c, 0.9 * c), (0.2 * c, c), (-c, -0.5 * c)):
+            ref, _ = integrate.quad(ring, z1, z2, epsabs=1e-14, epsrel=1e-13)
+            got = pores.converged_zone_area(np.array([[a, a, c]]), np.eye(3)[None],
+                                            np.array([z1 / c]), np.array([z2 / c]))[0][0]
+            assert got == pytest.approx(ref, rel=1e-11)
+
+
+def test_tilted_cut_adds_up():
+    """planes at several heights split a tilted triaxial ellipsoid into zones whose areas add
+    up to the whole (each zone converged on its own)"""
+    rng = np.random.default_rng(5)
+    semi = np.array([[0.9, 0.5, 0.25]])
+    R = pores.rotation_matrices(random_rotations(rng, 1))
+    cuts = np.array([-1.0, -0.62, -0.1, 0.33, 0.8, 1.0])
+    zones = [pores.converged_zone_area(semi, R, cuts[k:k + 1], cuts[k + 1:k + 2])[0][0]
+             for k in range(5)]
+    assert sum(zones) == pytest.approx(pores.ellipsoid_area(semi[0]), rel=1e-12)
+    assert min(zones) > 0
+
+
+# ---------------------------------------------------------------------------------------------
+# voxel algorithms
+
+
+def brute_local_thickness(pore, h, nlevels):
+    """max over centres c of floor_h(dist(c)) such that |p - c| <= floor_h(dist(c)), with
+    periodic minimum-image distances in x and y and plain ones in z"""
+    n = np.array(pore.shape)
+    idx = np.argwhere(np.ones(pore.shape, bool))
+    solid = np.argwhere(~pore)
+
+    def periodic(a, b):
+        d = np.abs(a[:, None, :] - b[None, :, :]).astype(float)
+        d[..., :2] = np.minimum(d[..., :2], n[:2] - d[..., :2])
+        return h * np.sqrt((d * d).sum(-1))
+
+    dist = periodic(idx, solid).min(axis=1)
+    level = np.minimum(np.floor(dist / h + 1e-9), nlevels) * h
+    centres = level > 0
+    out = np.zeros(len(idx))
+    pts = idx[pore.ravel()]
+    d = periodic(pts, idx[centres])
+    ok = d <= level[centres][None, :] + 1e-9
+    out[pore.ravel()] = np.where(ok, level[centres][None, :], 0).max(axis=1)
+    return out.reshape(pore.shape)
+
+
+def test_local_thickness_brute_force():
+    rng = np.random.default_rng(8)
+    shape = (13, 11, 12)
+    pore = rng.uniform(size=shape) > 0.015
+    pore[:, :, [0, -1]] &= rng.uniform(size=(13, 11, 2)) > 0.5
+    h = 1.0    # integer distances: ties at r = k h compare exactly in both computations
+    radius_max = 4.5
+    want = brute_local_thickness(pore, h, int(radius_max / h))
+    for window in (slice(0, shape[2]), slice(4, 9)):    # balls from outside the window too
+        got, _ = pores.local_thickness(pore, (h, h, h), radius_max, window, lambda m: None)
+        np.testing.assert_allclose(got, want[:, :, window], atol=1e-12)
+        assert got.max() > 2 * h    # several levels really occur
+
+
+def test_periodic_connectivity():
+    """a pore path that reaches the top only by crossing the periodic x (then y) face"""
+    for axis in (0, 1):
+        pore = np.zeros((6, 6, 5), bool)
+        pore[0, 2, 0:3] = True            # up from the bottom at x = 0 ...
+        if axis == 0:
+            pore[5, 2, 2:5] = True        # ... across x = 0 | x = 5 and up to the top
+        else:
+            pore[0, 2, 2] = pore[0, 1, 2] = pore[0, 0, 2] = True
+            pore[0, 5, 2:5] = True        # ... along y, across y = 0 | y = 5, up
+        labels, _ = pores.periodic_labels(pore)
+        assert labels[0, 2, 0] == labels[pore][-1] > 0
+        top = labels[:, :, -1][labels[:, :, -1] > 0]
+        assert labels[0, 2, 0] in top
+        closed = pore.copy()
+        closed[:, :, 3] = False           # a solid layer closes it
+        labels, _ = pores.periodic_labels(closed)
+        assert not np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
+                                  labels[:, :, -1][labels[:, :, -1] > 0]).size
+
+
+def test_geometric_tortuosity(monkeypatch):
+    """an open slab: 1; a one-voxel channel climbing diagonally in x and z, wrapping around
+    the periodic x face: sqrt(1 + (hx/hz)^2); a closed slab: None; above the voxel limit:
+    None"""
+    spacing = (0.3, 0.2, 0.4)
+    assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) == pytest.approx(1.0)
+    pore = np.zeros((7, 5, 12), bool)
+    k = np.arange(12)
+    pore[(k + 3) % 7, 2, k] = True
+    tau = pores.geometric_tortuosity(pore, spacing)
+    assert tau == pytest.approx(math.hypot(0.3, 0.4) / 0.4, rel=1e-12)
+    pore[:, :, 6] = False
+    assert pores.geometric_tortuosity(pore, spacing) is None
+    monkeypatch.setattr(pores, "TORTUOSITY_MAX_VOXELS", 179)    # the open slab has 180
+    assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) is None
+
+
+def test_voxel_porosity_converges():
+    """randomly oriented triaxial ellipsoids (bounding radius 0.45) jittered on a unit lattice
+    (so none overlap), crossing the periodic faces and cut by the slab planes: the voxel
+    porosity approaches the closed-form porosity as h shrinks"""
+    rng = np.random.default_rng(12)
+    cells = np.array([[i, j, k + 0.5] for i in range(3) for j in range(3) for k in range(4)])
+    n = len(cells)
+    p = pores.Particles(cells + rng.uniform(-0.05, 0.05, size=(n, 3)), random_rotations(rng, n),
+                        np.tile([0.45, 0.3, 0.2], (n, 1)))
+    box = np.array([[0, 3], [0, 3], [0, 4]], float)
+    zlo, zhi = 0.83, 3.27
+    exact = 1 - (pores.slab_fraction(p, zlo, zhi) * p.volumes).sum() / (9 * (zhi - zlo))
+    errors = []
+    for h in (0.1, 0.05, 0.025):
+        grid = pores.Grid(box, zlo, zhi, h, margin=0.0)
+        solid = pores.voxelize(p, grid, lambda m: None)[:, :, grid.slab]
+        errors.append(abs((1 - solid.mean()) - exact))
+    assert errors[2] < errors[0] / 4
+    assert errors[2] < 1e-3
+
+
+# ---------------------------------------------------------------------------------------------
+# a real deposit
+
+
+@pytest.fixture(scope="module")
+def deposit(tmp_path_factory):
+    """examples/deposit/in.deposit with 100 particles, stopped once all are in and their
+    kinetic energy is below 0.05 m g d each (checked every 500 steps): small but real"""
+    out = tmp_path_factory.mktemp("deposit")
+    lmp = new_lammps()
+    # the runner passes the tangential law words explicitly, as here
+    for name, value in (("N", 100), ("ketol", 5e-2), ("chunk", 500), ("image", 0),
+                        ("out", str(out)), ("seed", 17), ("tangential", '"history 2.0e3 0.5"')):
+        lmp.command(f"variable {name} index {value}")
+    lmp.file(os.path.join(root_dir(), "examples", "deposit", "in.deposit"))
+    phi = lmp.extract_compute("pack", 0, 1)[0]
+    lmp.close()
+    return str(out), phi
+
+
+def test_deposit_porosity_matches_packing_compute(deposit):
+    out, phi = deposit
+    particles, box = pores.read_dump(os.path.join(out, "deposit.dump"))
+    pk = pores.read_packing(os.path.join(out, "packing.dat"))
+    assert len(particles) == 100
+    zlo, zhi = pk["zlo"], pk["zhi"]
+    assert zhi > zlo
+    v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
+    porosity = 1 - (pores.slab_fraction(particles, zlo, zhi) * particles.volumes).sum() / v_slab
+    # the dump holds 6 significant digits and packing.dat's zlo, zhi 6 decimals
+    assert porosity == pytest.approx(1 - phi, abs=2e-5)
+    assert porosity == pytest.approx(1 - pk["phi"], abs=2e-5)
+    assert 0.25 < porosity < 0.75
+
+
+def test_tool_on_the_run_folder(deposit):
+    out, phi = deposit
+    result = pores.run_folder(out, voxel=0.12, quiet=True)
+    with open(os.path.join(out, "pores.json")) as f:
+        saved = json.load(f)
+    assert saved["porosity"] == pytest.approx(result["porosity"], rel=1e-15)
+    assert abs(saved["porosity_check"]["difference"]) < 2e-5
+    assert abs(saved["porosity_voxel"] - saved["porosity"]) < 0.03
+    assert saved["specific_surface"] > 0 and saved["kozeny_carman_permeability"] > 0
+    fine, coarse = saved["convergence"]["voxel_size"]    # fitted to whole voxels per box edge
+    assert fine == saved["voxel_size"] and coarse == pytest.approx(2 * fine, rel=0.05)
+    assert sum(saved["pore_size_distribution"]["volume_fraction"]) == pytest.approx(1.0)
+    img = saved["voxel_image"]
+    raw = np.fromfile(os.path.join(out, img["file"]), dtype=np.uint8)
+    nx, ny, nz = img["shape_xyz"]
+    assert raw.size == nx * ny * nz and set(np.unique(raw)) <= {0, 1}
+    assert 1 - raw.mean() == pytest.approx(saved["porosity_voxel"], rel=1e-12)
+    with open(os.path.join(out, img["header"])) as f:
+        assert f"DimSize = {nx} {ny} {nz}" in f.read()
+    assert os.path.getsize(os.path.join(out, "pores.png")) > 10000
+    # the study figure path: several run folders against the shape
+    table = pores.compare([out, out], os.path.join(out, "compare.png"))
+    assert table[0]["runs"] == 2 and table[0]["porosity"] == pytest.approx(saved["porosity"])
+    assert os.path.exists(os.path.join(out, "compare.png"))

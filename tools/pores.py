@@ -1,0 +1,678 @@
+#!/usr/bin/env python3
+"""The deposit as a porous medium: porosity, specific surface, pore sizes, permeability.
+
+    ./ellipsoid-dep python tools/pores.py RUN_DIR [--voxel H] [--quiet]
+    ./ellipsoid-dep python tools/pores.py --compare OUT.png RUN_DIR [RUN_DIR ...]
+
+Reads RUN_DIR/deposit.dump (the runner's OVITO dump: id type x y z quatw quati quatj quatk
+semi_a_x semi_a_y semi_a_z ...) and RUN_DIR/packing.dat (the slab zlo, zhi and phi of compute
+packing/ellipsoid) and writes
+    RUN_DIR/pores.json         every number below (definitions: doc/howto_pores.md)
+    RUN_DIR/pores.png          slices of the pore space coloured by local thickness, the pore
+                               size distribution and the porosity profile
+    RUN_DIR/pores_voxels.raw   the voxel image of the slab, uint8 (1 solid, 0 pore), x fastest,
+    RUN_DIR/pores_voxels.mhd   then y, then z, with its MetaImage header (spacing, origin)
+Exact from the particles: porosity (closed-form ellipsoid-slab volumes) and specific surface
+(Carlson's R_G for whole particles, a converged quadrature over the cut ones). From the voxel
+image (periodic in x and y): pore size distribution (local thickness from the Euclidean
+distance transform), connectivity from the bottom to the top of the slab, and the voxel
+porosity; these are computed at the voxel size H and at 2 H to show their convergence.
+Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values.
+
+--compare reads pores.json (running the analysis where it is missing) and packing.dat of
+several run folders and plots porosity, specific surface and permeability against the shape
+along the lines eta = zeta, prolate (zeta = 1, vs eta) and oblate (eta = 1, vs zeta).
+"""
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+from scipy import ndimage, special
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from deposit_run import read_packing  # noqa: E402
+
+VOXEL_FRACTION = 0.25     # default voxel size: this fraction of the smallest semi-axis
+KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
+QUADRATURE_NODES = (24, 32)    # zone quadrature: Gauss-Legendre in t, trapezoid in phi
+PROGRESS_VOXELS = 2_000_000    # show progress above this many voxels
+TORTUOSITY_MAX_VOXELS = 1_500_000    # pore voxels; the path graph needs ~0.6 kB per voxel
+
+
+class Progress:
+    """progress lines on stderr for large deposits (silent when quiet or small)"""
+
+    def __init__(self, quiet=False):
+        self.quiet = quiet
+        self.t0 = time.time()
+
+    def __call__(self, msg):
+        if not self.quiet:
+            print("[pores %6.1f s] %s" % (time.time() - self.t0, msg), file=sys.stderr,
+                  flush=True)
+
+
+# ---------------------------------------------------------------------------------------------
+# particles
+
+
+class Particles:
+    """centres (N, 3), rotations (N, 3, 3) body -> box (columns = body axes), semi-axes (N, 3)"""
+
+    def __init__(self, centres, quats, semi):
+        self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
+        self.semi = np.asarray(semi, dtype=float).reshape(-1, 3)
+        self.rotations = rotation_matrices(np.asarray(quats, dtype=float).reshape(-1, 4))
+        if not (np.all(np.isfinite(self.centres)) and np.all(self.semi > 0)):
+            raise ValueError("particles need finite centres and positive semi-axes")
+        # M = R diag(s^2) R^T and Q = M^-1
+        self.inverse_form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** 2,
+                                      self.rotations)
+        self.form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** -2, self.rotations)
+        self.half_extent = np.sqrt(np.einsum("nii->ni", self.inverse_form))    # along x, y, z
+
+    def __len__(self):
+        return len(self.centres)
+
+    @property
+    def volumes(self):
+        return 4.0 / 3.0 * math.pi * np.prod(self.semi, axis=1)
+
+
+def rotation_matrices(quats):
+    """unit quaternions (w, x, y, z) -> rotation matrices (normalised first)"""
+    q = quats / np.linalg.norm(quats, axis=1)[:, None]
+    w, x, y, z = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
+
+
+def read_dump(path):
+    """last frame of a LAMMPS custom dump with the runner's columns -> (Particles, box (3, 2))"""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    starts = [k for k, line in enumerate(lines) if line.startswith("ITEM: TIMESTEP")]
+    if not starts:
+        raise ValueError("%s: not a LAMMPS dump" % path)
+    frame = lines[starts[-1]:]
+    n = int(frame[3])
+    box = np.array([[float(v) for v in frame[5 + k].split()[:2]] for k in range(3)])
+    header = frame[8].split()
+    if header[:2] != ["ITEM:", "ATOMS"]:
+        raise ValueError("%s: unexpected dump layout" % path)
+    columns = header[2:]
+    data = np.array([row.split() for row in frame[9:9 + n]], dtype=float).reshape(n, -1)
+
+    def cols(names):
+        missing = [c for c in names if c not in columns]
+        if missing:
+            raise ValueError("%s: missing dump columns %s" % (path, " ".join(missing)))
+        return data[:, [columns.index(c) for c in names]]
+
+    return (Particles(cols(["x", "y", "z"]), cols(["quatw", "quati", "quatj", "quatk"]),
+                      cols(["semi_a_x", "semi_a_y", "semi_a_z"])), box)
+
+
+# ---------------------------------------------------------------------------------------------
+# exact volumes and areas
+
+
+def slab_fraction(particles, zlo, zhi):
+    """fraction of each ellipsoid's volume between the planes: the section area at
+    t = (z - z_c)/h is (3 V / 4 h)(1 - t^2), h = sqrt(M_zz)"""
+    h = particles.half_extent[:, 2]
+    t1 = np.clip((zlo - particles.centres[:, 2]) / h, -1.0, 1.0)
+    t2 = np.clip((zhi - particles.centres[:, 2]) / h, -1.0, 1.0)
+    return np.maximum(0.75 * ((t2 - t1) - (t2 ** 3 - t1 ** 3) / 3.0), 0.0)
+
+
+def ellipsoid_area(semi):
+    """exact surface area 4 pi abc R_G(1/a^2, 1/b^2, 1/c^2) (Carlson's symmetric integral)"""
+    s = np.asarray(semi, dtype=float)
+    a, b, c = s[..., 0], s[..., 1], s[..., 2]
+    return 4.0 * math.pi * a * b * c * special.elliprg(a ** -2, b ** -2, c ** -2)
+
+
+def zone_area(semi, rotations, t1, t2, nodes=QUADRATURE_NODES):
+    """area of the part of each ellipsoid surface between z_c + h t1 and z_c + h t2.
+
+    The surface is the image of the unit sphere under x = z_c + R S u (S = diag(semi)), with
+    area element abc |S^-1 u| dOmega. The height z = z_c + w.u, w = S R^T e_z, |w| = h, so the
+    part between the planes is the spherical zone t1 <= u.w/h <= t2 about w: integrate in
+    (t, phi) around that axis. The phi-integral is even in sqrt(1 - t^2), hence analytic in t,
+    and Gauss-Legendre in t with the trapezoid rule in phi converge exponentially."""
+    semi = np.asarray(semi, dtype=float).reshape(-1, 3)
+    nt, nphi = nodes
+    w = semi * rotations[:, 2, :]
+    axis = w / np.linalg.norm(w, axis=1)[:, None]
+    # an orthonormal pair perpendicular to the axis
+    helper = np.where(np.abs(axis[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]])
+    e1 = np.cross(axis, helper)
+    e1 /= np.linalg.norm(e1, axis=1)[:, None]
+    e2 = np.cross(axis, e1)
+    x, wt = np.polynomial.legendre.leggauss(nt)
+    t = 0.5 * (t2 - t1)[:, None] * x[None, :] + 0.5 * (t2 + t1)[:, None]      # (n, nt)
+    phi = 2.0 * math.pi * np.arange(nphi) / nphi
+    rho = np.sqrt(np.clip(1.0 - t * t, 0.0, None))
+    u = (t[:, :, None, None] * axis[:, None, None, :]
+         + rho[:, :, None, None] * (np.cos(phi)[None, None, :, None] * e1[:, None, None, :]
+                                    + np.sin(phi)[None, None, :, None] * e2[:, None, None, :]))
+    integrand = np.sqrt(np.sum((u / semi[:, None, None, :]) ** 2, axis=-1))   # (n, nt, nphi)
+    inner = integrand.mean(axis=2) * 2.0 * math.pi
+    return np.prod(semi, axis=1) * 0.5 * (t2 - t1) * (inner @ wt)
+
+
+def converged_zone_area(semi, rotations, t1, t2, rtol=1e-12, max_nodes=(1024, 2048)):
+    """zone_area with the nodes doubled per particle until two successive results agree to
+    rtol; returns (areas, largest relative change of the last doubling)"""
+    semi = np.asarray(semi, dtype=float).reshape(-1, 3)
+    areas = zone_area(semi, rotations, t1, t2)
+    change = np.full(len(semi), np.inf)
+    nodes = QUADRATURE_NODES
+    todo = np.arange(len(semi))
+    while todo.size:
+        nodes = tuple(2 * n for n in nodes)
+        if nodes[0] > max_nodes[0]:
+            raise RuntimeError("zone quadrature did not converge to %g" % rtol)
+        # chunks keep the (particles, t, phi, 3) array below about 50 MB
+        chunk = max(1, 2_000_000 // (nodes[0] * nodes[1]))
+        for k in range(0, todo.size, chunk):
+            sel = todo[k:k + chunk]
+            new = zone_area(semi[sel], rotations[sel], t1[sel], t2[sel], nodes)
+            change[sel] = np.abs(new - areas[sel]) / np.maximum(np.abs(new), 1e-300)
+            areas[sel] = new
+        todo = todo[change[todo] > rtol]
+    return areas, float(change.max()) if len(semi) else 0.0
+
+
+def slab_surface(particles, zlo, zhi):
+    """solid surface area between the planes: exact for whole particles, the converged zone
+    quadrature for those a plane cuts; returns (area, relative change of the last doubling of
+    the quadrature nodes, number of cut particles)"""
+    h = particles.half_extent[:, 2]
+    z = particles.centres[:, 2]
+    whole = (z - h >= zlo) & (z + h <= zhi)
+    cut = ~whole & (z + h > zlo) & (z - h < zhi)
+    area = float(ellipsoid_area(particles.semi[whole]).sum())
+    change = 0.0
+    if cut.any():
+        t1 = np.clip((zlo - z[cut]) / h[cut], -1.0, 1.0)
+        t2 = np.clip((zhi - z[cut]) / h[cut], -1.0, 1.0)
+        zones, change = converged_zone_area(particles.semi[cut], particles.rotations[cut], t1, t2)
+        area += float(zones.sum())
+    return area, change, int(cut.sum())
+
+
+# ---------------------------------------------------------------------------------------------
+# voxels
+
+
+class Grid:
+    """voxel grid over the box in x and y (periodic) and [z0, z0 + nz hz] in z; voxel (i, j, k)
+    is centred at ((i + 1/2) hx, (j + 1/2) hy, z0 + (k + 1/2) hz) relative to the box corner"""
+
+    def __init__(self, box, zlo, zhi, voxel, margin):
+        lx, ly = box[0, 1] - box[0, 0], box[1, 1] - box[1, 0]
+        self.origin = np.array([box[0, 0], box[1, 0]])
+        self.nx = max(1, int(round(lx / voxel)))
+        self.ny = max(1, int(round(ly / voxel)))
+        self.hx, self.hy = lx / self.nx, ly / self.ny
+        self.nslab = max(1, int(round((zhi - zlo) / voxel)))
+        self.hz = (zhi - zlo) / self.nslab
+        self.nbelow = int(math.ceil(margin / self.hz))
+        floor_layers = int(math.floor((zlo - box[2, 0]) / self.hz))
+        self.floor = self.nbelow > floor_layers    # the grid reaches the box bottom (a wall)
+        if self.floor:
+            self.nbelow = floor_layers
+        self.nabove = int(math.ceil(margin / self.hz))
+        self.nz = self.nbelow + self.nslab + self.nabove
+        self.z0 = zlo - self.nbelow * self.hz
+        self.spacing = (self.hx, self.hy, self.hz)
+
+    @property
+    def slab(self):
+        return slice(self.nbelow, self.nbelow + self.nslab)
+
+    @property
+    def shape(self):
+        return (self.nx, self.ny, self.nz)
+
+
+def voxelize(particles, grid, progress):
+    """solid[i, j, k]: the voxel centre lies inside some ellipsoid; x and y wrap around"""
+    solid = np.zeros(grid.shape, dtype=bool)
+    lo = np.array([grid.origin[0], grid.origin[1], grid.z0])
+    h = np.array(grid.spacing)
+    if np.any(2 * particles.half_extent[:, :2] >= [grid.nx * grid.hx, grid.ny * grid.hy]):
+        raise ValueError("a particle is wider than the periodic box")
+    first = np.ceil((particles.centres - particles.half_extent - lo) / h - 0.5).astype(int)
+    last = np.floor((particles.centres + particles.half_extent - lo) / h - 0.5).astype(int)
+    n = len(particles)
+    report = max(1, n // 10) if solid.size > PROGRESS_VOXELS else n + 1
+    for p in range(n):
+        kz = np.arange(max(first[p, 2], 0), min(last[p, 2], grid.nz - 1) + 1)
+        if kz.size == 0:
+            continue
+        ix = np.arange(first[p, 0], last[p, 0] + 1)
+        iy = np.arange(first[p, 1], last[p, 1] + 1)
+        d = [(idx + 0.5) * h[a] + lo[a] - particles.centres[p, a]
+             for a, idx in enumerate((ix, iy, kz))]
+        Q = particles.form[p]
+        q = (Q[0, 0] * d[0][:, None, None] ** 2 + Q[1, 1] * d[1][None, :, None] ** 2
+             + Q[2, 2] * d[2][None, None, :] ** 2
+             + 2 * Q[0, 1] * d[0][:, None, None] * d[1][None, :, None]
+             + 2 * Q[0, 2] * d[0][:, None, None] * d[2][None, None, :]
+             + 2 * Q[1, 2] * d[1][None, :, None] * d[2][None, None, :])
+        solid[np.ix_(ix % grid.nx, iy % grid.ny, kz)] |= q <= 1.0
+        if (p + 1) % report == 0:
+            progress("voxelised %d of %d particles" % (p + 1, n))
+    return solid
+
+
+def periodic_distance(mask, spacing, reach):
+    """Euclidean distance from every True voxel to the nearest False voxel, periodic in x and
+    y; exact wherever it is at most reach (the image is wrapped by that much on each side)"""
+    px = min(int(math.ceil(reach / spacing[0])) + 1, 4 * mask.shape[0])
+    py = min(int(math.ceil(reach / spacing[1])) + 1, 4 * mask.shape[1])
+    padded = np.pad(mask, ((px, px), (py, py), (0, 0)), mode="wrap")
+    d = ndimage.distance_transform_edt(padded, sampling=spacing)
+    return d[px:px + mask.shape[0], py:py + mask.shape[1], :]
+
+
+def local_thickness(pore, spacing, radius_max, window, progress):
+    """local thickness of the pore voxels in window (a z slice of the grid): the radius of the
+    largest ball inside the pore space that contains the voxel, on radii k h (h the smallest
+    spacing, k = 1, 2, ...) up to radius_max. A ball of radius r is centred on a voxel whose
+    distance to the solid is >= r; it covers the voxels within r of its centre. Returns
+    (thickness of the window's voxels, distance map of the grid: exact up to radius_max,
+    larger than radius_max where the true distance is)."""
+    distance = periodic_distance(pore, spacing, radius_max)
+    h = min(spacing)
+    radii = h * np.arange(1, int(math.floor(radius_max / h)) + 1)
+    thickness = np.zeros(pore[:, :, window].shape)
+    inside = pore[:, :, window]
+    for n, r in enumerate(radii):
+        # a ball of radius r reaches the window only from centres within r of it
+        lo = max(0, window.start - int(math.ceil(r / spacing[2])))
+        hi = min(pore.shape[2], window.stop + int(math.ceil(r / spacing[2])))
+        centres = distance[:, :, lo:hi] >= r
+        if not centres.any():
+            break
+        reach = periodic_distance(~centres, spacing, r)[:, :, window.start - lo:window.stop - lo]
+        thickness[(reach <= r) & inside] = r
+        if pore.size > PROGRESS_VOXELS and (n + 1) % 5 == 0:
+            progress("local thickness: radius %.4g (at most %.4g)" % (r, radii[-1]))
+    return thickness, distance
+
+
+def periodic_labels(pore):
+    """face-connected components of the pore voxels, merged across the periodic x and y
+    faces; returns (labels, number of labels) with label 0 = solid"""
+    labels, n = ndimage.label(pore)
+    parent = np.arange(n + 1)
+
+    def root(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for a, b in ((labels[0], labels[-1]), (labels[:, 0], labels[:, -1])):
+        joined = (a > 0) & (b > 0)
+        for u, v in set(zip(a[joined].tolist(), b[joined].tolist())):
+            ru, rv = root(u), root(v)
+            if ru != rv:
+                parent[max(ru, rv)] = min(ru, rv)
+    roots = np.array([root(k) for k in range(n + 1)])
+    return roots[labels], n
+
+
+def geometric_tortuosity(pore, spacing):
+    """mean over the pore voxels of the top layer reached from the bottom layer of (shortest
+    path through the pore voxels from any bottom pore voxel) / (height between the layer
+    centres); paths step between 26-neighbours (x and y periodic). None if not connected or
+    if the image has more than TORTUOSITY_MAX_VOXELS pore voxels (the graph's memory)."""
+    nx, ny, nz = pore.shape
+    n = int(pore.sum())
+    if nz < 2 or n > TORTUOSITY_MAX_VOXELS:
+        return None
+    if nx < 3 or ny < 3:    # the periodic neighbours would repeat
+        raise ValueError("geometric tortuosity needs at least 3 voxels in x and y")
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+    index = -np.ones(pore.shape, dtype=np.int32)
+    index[pore] = np.arange(n, dtype=np.int32)
+    rows, cols, weights = [], [], []
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            for dz in (0, 1):
+                if (dz, dy, dx) <= (0, 0, 0):    # each neighbour pair once
+                    continue
+                a = index[:, :, :nz - dz]
+                b = np.roll(index, (-dx, -dy), axis=(0, 1))[:, :, dz:]
+                both = (a >= 0) & (b >= 0)
+                rows.append(a[both])
+                cols.append(b[both])
+                weights.append(np.full(int(both.sum()), math.sqrt(
+                    (dx * spacing[0]) ** 2 + (dy * spacing[1]) ** 2 + (dz * spacing[2]) ** 2)))
+    graph = coo_matrix((np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
+                       shape=(n, n)).tocsr()
+    bottom = index[:, :, 0][pore[:, :, 0]]
+    top = index[:, :, -1][pore[:, :, -1]]
+    if bottom.size == 0 or top.size == 0:
+        return None
+    length = dijkstra(graph, directed=False, indices=bottom, min_only=True)[top]
+    length = length[np.isfinite(length)]
+    if length.size == 0:
+        return None
+    return float(length.mean() / ((nz - 1) * spacing[2]))
+
+
+def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
+    """voxel porosity, pore sizes and connectivity of the slab at one voxel size"""
+    margin = float(particles.semi.max())    # doubled below while a pore is wider than half
+    for _ in range(4):
+        grid = Grid(box, zlo, zhi, voxel, margin)
+        progress("voxel grid %d x %d x %d (slab %d layers), voxel %.4g"
+                 % (grid.nx, grid.ny, grid.nz, grid.nslab, voxel))
+        solid = voxelize(particles, grid, progress)
+        if grid.floor:    # the box bottom is the ground: solid below the grid
+            solid = np.concatenate([np.ones(grid.shape[:2] + (1,), bool), solid], axis=2)
+            grid.nbelow += 1
+            grid.nz += 1
+            grid.z0 -= grid.hz
+        pore = ~solid
+        # the radii that matter: balls centred within margin / 2 of the slab
+        radius_max = margin / 2.0
+        thickness, distance = local_thickness(pore, grid.spacing, radius_max, grid.slab,
+                                              progress)
+        lo = max(0, grid.slab.start - int(math.ceil(radius_max / grid.hz)))
+        hi = min(grid.nz, grid.slab.stop + int(math.ceil(radius_max / grid.hz)))
+        if distance[:, :, lo:hi].max() <= radius_max:
+            break
+        margin *= 2.0    # a pore wider than the margin: enlarge it and redo
+    else:
+        raise RuntimeError("pores wider than the margin around the slab; is it inside the deposit?")
+
+    slab_pore = pore[:, :, grid.slab]
+    npore = int(slab_pore.sum())
+    labels, _ = periodic_labels(slab_pore)
+    spanning = np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
+                              labels[:, :, -1][labels[:, :, -1] > 0])
+    h = min(grid.spacing)
+    levels = np.rint(thickness[slab_pore] / h).astype(int)
+    counts = np.bincount(levels, minlength=levels.max() + 1)[1:] if npore else np.zeros(0)
+    radius = h * np.arange(1, len(counts) + 1)
+    return {
+        "voxel_size": h,
+        "voxel_spacing": list(grid.spacing),
+        "grid": [grid.nx, grid.ny, grid.nslab],
+        "porosity_voxel": npore / slab_pore.size,
+        "largest_inscribed_radius": float(distance[:, :, grid.slab][slab_pore].max()),
+        # the level r_k floors the ball radius (-h/2 on average) while distances to solid
+        # voxel centres exceed those to the surface (+h/2 on average): r_k is the estimate
+        "mean_pore_radius": float(thickness[slab_pore].mean()) if npore else 0.0,
+        "connected_z": bool(spanning.size > 0),
+        "connected_pore_fraction": float(np.isin(labels, spanning).sum() / max(npore, 1)),
+        "geometric_tortuosity": geometric_tortuosity(slab_pore, grid.spacing),
+        "pore_size_distribution": {"radius": radius.tolist(),
+                                   "volume_fraction": (counts / max(npore, 1)).tolist(),
+                                   "bin_width": h},
+        "margin": margin,
+        "_solid_slab": solid[:, :, grid.slab],
+        "_thickness": thickness,
+        "_grid": grid,
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# the analysis
+
+
+def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
+    """every pore-space quantity of the slab [zlo, zhi]; voxel quantities at voxel and 2 voxel.
+    Keys starting with '_' hold arrays for the picture and the image file."""
+    progress = progress or Progress(quiet=True)
+    if not zhi > zlo:
+        raise ValueError("the slab needs zhi > zlo")
+    if voxel is None:
+        voxel = VOXEL_FRACTION * float(particles.semi.min())
+    if not voxel > 0:
+        raise ValueError("the voxel size must be > 0")
+    area_xy = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0])
+    v_slab = area_xy * (zhi - zlo)
+    v_solid = float((slab_fraction(particles, zlo, zhi) * particles.volumes).sum())
+    porosity = 1.0 - v_solid / v_slab
+    surface, quad_change, ncut = slab_surface(particles, zlo, zhi)
+    s_v = surface / v_slab
+    progress("exact: porosity %.5f, specific surface %.5g" % (porosity, s_v))
+
+    fine = analyse_voxels(particles, box, zlo, zhi, voxel, progress)
+    coarse = analyse_voxels(particles, box, zlo, zhi, 2 * voxel, progress)
+    compared = ("porosity_voxel", "largest_inscribed_radius", "mean_pore_radius", "connected_z",
+                "connected_pore_fraction", "geometric_tortuosity")
+    result = {
+        "slab": {"zlo": zlo, "zhi": zhi, "area_xy": area_xy, "volume": v_slab},
+        "particles": len(particles),
+        "porosity": porosity,
+        "solid_volume": v_solid,
+        "specific_surface": s_v,
+        "specific_surface_per_solid_volume": surface / v_solid if v_solid > 0 else 0.0,
+        "surface_area": surface,
+        "surface_cut_particles": ncut,
+        "surface_quadrature_relative_change": quad_change,
+        "kozeny_carman_permeability": porosity ** 3 / (KOZENY_CONSTANT * s_v ** 2)
+        if s_v > 0 else math.inf,
+        "kozeny_carman": {"formula": "k = porosity^3 / (K S_v^2), S_v = specific_surface",
+                          "K": KOZENY_CONSTANT},
+        "hydraulic_radius": porosity / s_v if s_v > 0 else math.inf,
+        "voxel_size": fine["voxel_size"],
+        "voxel_default_fraction_of_smallest_semi_axis": VOXEL_FRACTION,
+        "convergence": {"voxel_size": [fine["voxel_size"], coarse["voxel_size"]]},
+    }
+    for key in ("voxel_spacing", "grid", "porosity_voxel", "largest_inscribed_radius",
+                "mean_pore_radius", "connected_z", "connected_pore_fraction",
+                "geometric_tortuosity", "pore_size_distribution", "margin"):
+        result[key] = fine[key]
+    for key in compared:
+        result["convergence"][key] = [fine[key], coarse[key]]
+    result["convergence"]["porosity_exact"] = porosity
+    for key in ("_solid_slab", "_thickness", "_grid"):
+        result[key] = fine[key]
+    return result
+
+
+def write_voxel_image(result, run_dir):
+    """uint8 raw stack (1 solid, 0 pore; x fastest, then y, then z) + MetaImage header"""
+    solid = result["_solid_slab"]
+    grid = result["_grid"]
+    raw = os.path.join(run_dir, "pores_voxels.raw")
+    solid.astype(np.uint8).transpose(2, 1, 0).tofile(raw)
+    origin = (grid.origin[0], grid.origin[1], result["slab"]["zlo"])
+    with open(os.path.join(run_dir, "pores_voxels.mhd"), "w") as f:
+        f.write("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+                "DimSize = %d %d %d\nElementSpacing = %.17g %.17g %.17g\n"
+                "Offset = %.17g %.17g %.17g\nElementType = MET_UCHAR\n"
+                "ElementDataFile = pores_voxels.raw\n"
+                % (solid.shape + tuple(grid.spacing) + origin))
+    return {"file": "pores_voxels.raw", "header": "pores_voxels.mhd", "dtype": "uint8",
+            "values": {"solid": 1, "pore": 0}, "order": "x fastest, then y, then z",
+            "shape_xyz": list(solid.shape), "spacing": list(grid.spacing), "origin": list(origin),
+            "periodic": ["x", "y"]}
+
+
+def plot(result, particles, path, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    grid = result["_grid"]
+    solid, thick = result["_solid_slab"], result["_thickness"]
+    zlo, zhi = result["slab"]["zlo"], result["slab"]["zhi"]
+    lx, ly = grid.nx * grid.hx, grid.ny * grid.hy
+    fig, ax = plt.subplots(2, 2, figsize=(10, 8.5))
+    fig.subplots_adjust(hspace=0.35)
+    show = np.ma.masked_where(solid, thick)
+    cmap = plt.get_cmap("viridis").copy()
+    cmap.set_bad("0.75")
+    vmax = max(float(thick.max()), 1e-12)
+    im = ax[0, 0].imshow(show[:, grid.ny // 2, :].T, origin="lower", cmap=cmap, vmin=0,
+                         vmax=vmax, extent=(0, lx, zlo, zhi), aspect="equal")
+    ax[0, 0].set(xlabel="x", ylabel="z", title="vertical section y = Ly/2 (grey: solid)")
+    ax[0, 1].imshow(show[:, :, grid.nslab // 2].T, origin="lower", cmap=cmap, vmin=0, vmax=vmax,
+                    extent=(0, lx, 0, ly), aspect="equal")
+    ax[0, 1].set(xlabel="x", ylabel="y", title="horizontal section, middle of the slab")
+    fig.colorbar(im, ax=ax[0, :], label="local thickness (pore radius)", shrink=0.8)
+    psd = result["pore_size_distribution"]
+    ax[1, 0].bar(psd["radius"], psd["volume_fraction"], width=psd["bin_width"], color="C0")
+    ax[1, 0].axvline(result["mean_pore_radius"], color="k", ls="--", label="mean")
+    ax[1, 0].set(xlabel="pore radius (local thickness)", ylabel="fraction of pore volume",
+                 title="pore size distribution (voxel %.3g)" % result["voxel_size"])
+    ax[1, 0].legend(fontsize=8)
+    # porosity profile: voxel layers and the exact closed form in the same layers
+    z = zlo + (np.arange(grid.nslab) + 0.5) * grid.hz
+    layers = 1 - solid.mean(axis=(0, 1))
+    ax[1, 1].plot(layers, z, lw=0.8, label="voxel layers")
+    edges = np.linspace(zlo, zhi, min(grid.nslab, 60) + 1)
+    exact = [1 - (slab_fraction(particles, a, b) * particles.volumes).sum() / (lx * ly * (b - a))
+             for a, b in zip(edges[:-1], edges[1:])]
+    ax[1, 1].stairs(exact, edges, orientation="horizontal", color="k", baseline=None,
+                    label="exact (closed form)")
+    ax[1, 1].axvline(result["porosity"], color="gray", ls=":", label="slab porosity")
+    lo, hi = min(min(exact), layers.min()), max(max(exact), layers.max())
+    ax[1, 1].set_xlim(lo - 0.1 * (hi - lo + 0.01), hi + 0.1 * (hi - lo + 0.01))
+    ax[1, 1].set(xlabel="porosity", ylabel="z", title="porosity profile inside the slab")
+    ax[1, 1].legend(fontsize=8)
+    fig.suptitle("%s  porosity %.4f  S_v %.4g  k_KC %.3g" % (
+        title, result["porosity"], result["specific_surface"],
+        result["kozeny_carman_permeability"]), fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def public(result):
+    return {k: v for k, v in result.items() if not k.startswith("_")}
+
+
+def run_folder(run_dir, voxel=None, quiet=False, picture=True):
+    """analyse RUN_DIR/deposit.dump in the slab of RUN_DIR/packing.dat; write pores.json,
+    the voxel image and pores.png; return the public result"""
+    progress = Progress(quiet)
+    particles, box = read_dump(os.path.join(run_dir, "deposit.dump"))
+    pk = read_packing(os.path.join(run_dir, "packing.dat"))
+    progress("%d particles, slab z in [%g, %g]" % (len(particles), pk["zlo"], pk["zhi"]))
+    result = analyse(particles, box, pk["zlo"], pk["zhi"], voxel, progress)
+    if "phi" in pk:
+        result["porosity_check"] = {"one_minus_phi_packing_dat": 1.0 - pk["phi"],
+                                    "difference": result["porosity"] - (1.0 - pk["phi"])}
+    result["voxel_image"] = write_voxel_image(result, run_dir)
+    for key in ("eta", "zeta", "delta_r", "N", "seed"):
+        if key in pk:
+            result[key] = pk[key]
+    if picture:
+        title = "eta %g zeta %g" % (pk.get("eta", 0), pk.get("zeta", 0))
+        plot(result, particles, os.path.join(run_dir, "pores.png"), title)
+    out = public(result)
+    with open(os.path.join(run_dir, "pores.json"), "w") as f:
+        json.dump(out, f, indent=1)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# several runs against the shape
+
+
+SHAPE_LINES = (("eta = zeta", lambda e, z: e == z, 0, "o-"),
+               ("prolate, zeta = 1 (vs eta)", lambda e, z: z == 1.0, 0, "s--"),
+               ("oblate, eta = 1 (vs zeta)", lambda e, z: e == 1.0, 1, "^-."))
+COMPARED = (("porosity", "porosity"), ("specific_surface", r"specific surface $S_v$"),
+            ("kozeny_carman_permeability", r"$k_{KC} = \epsilon^3 / (5 S_v^2)$"))
+
+
+def compare(run_dirs, out_png, voxel=None, quiet=False):
+    """porosity, specific surface and Kozeny-Carman permeability against the shape along the
+    study's lines; seeds of one shape are averaged (error bar: standard error)"""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    by_shape = {}
+    for d in run_dirs:
+        path = os.path.join(d, "pores.json")
+        if os.path.exists(path):
+            with open(path) as f:
+                res = json.load(f)
+        else:
+            res = run_folder(d, voxel=voxel, quiet=quiet, picture=False)
+        pk = read_packing(os.path.join(d, "packing.dat"))
+        by_shape.setdefault((pk["eta"], pk["zeta"]), []).append(res)
+    fig, axes = plt.subplots(1, len(COMPARED), figsize=(4.2 * len(COMPARED), 3.6))
+    table = []
+    for ax, (key, label) in zip(axes, COMPARED):
+        for name, on_line, which, style in SHAPE_LINES:
+            pts = sorted((s[which], [r[key] for r in rs]) for s, rs in by_shape.items()
+                         if on_line(*s))
+            if not pts:
+                continue
+            x = [p[0] for p in pts]
+            m = [float(np.mean(v)) for _, v in pts]
+            e = [float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else 0.0
+                 for _, v in pts]
+            ax.errorbar(x, m, yerr=e, fmt=style, capsize=3, label=name)
+        ax.set(xlabel=r"aspect ratio ($\eta$ or $\zeta$)", ylabel=label)
+        ax.legend(fontsize=7)
+    for (eta, zeta), rs in sorted(by_shape.items()):
+        table.append({"eta": eta, "zeta": zeta, "runs": len(rs),
+                      **{k: float(np.mean([r[k] for r in rs])) for k, _ in COMPARED}})
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=120)
+    plt.close(fig)
+    return table
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dirs", nargs="+", metavar="RUN_DIR")
+    ap.add_argument("--voxel", type=float, default=None,
+                    help="voxel size (default %g x the smallest semi-axis)" % VOXEL_FRACTION)
+    ap.add_argument("--compare", metavar="OUT.png", default=None,
+                    help="plot several runs against the shape instead")
+    ap.add_argument("--quiet", action="store_true", help="no progress lines")
+    args = ap.parse_args(argv)
+    if args.compare:
+        for row in compare(args.run_dirs, args.compare, args.voxel, args.quiet):
+            print("eta %-5g zeta %-5g runs %d  porosity %.4f  S_v %.4f  k_KC %.4g" % (
+                row["eta"], row["zeta"], row["runs"], row["porosity"], row["specific_surface"],
+                row["kozeny_carman_permeability"]))
+        print("pores: wrote %s" % args.compare)
+        return
+    if len(args.run_dirs) != 1:
+        ap.error("one RUN_DIR (or --compare OUT.png RUN_DIR ...)")
+    d = args.run_dirs[0]
+    r = run_folder(d, args.voxel, args.quiet)
+    c = r["convergence"]
+    print("pores: %s (%d particles, slab z in [%.4g, %.4g])"
+          % (d, r["particles"], r["slab"]["zlo"], r["slab"]["zhi"]))
+    print("  porosity            %.5f   (1 - phi of packing.dat: %.5f)"
+          % (r["porosity"], r["porosity_check"]["one_minus_phi_packing_dat"]))
+    print("  specific surface    %.5g per unit length (%.5g per solid volume)"
+          % (r["specific_surface"], r["specific_surface_per_solid_volume"]))
+    print("  Kozeny-Carman k     %.4g  (K = %g)" % (r["kozeny_carman_permeability"],
+                                                   KOZENY_CONSTANT))
+    print("  voxel H, 2H         %.4g, %.4g" % tuple(c["voxel_size"]))
+    print("  porosity (voxels)   %.5f, %.5f" % tuple(c["porosity_voxel"]))
+    print("  mean pore radius    %.4g, %.4g" % tuple(c["mean_pore_radius"]))
+    print("  largest pore radius %.4g, %.4g" % tuple(c["largest_inscribed_radius"]))
+    print("  connected in z      %s, %s" % tuple(c["connected_z"]))
+    print("  geometric tortuosity %s, %s" % tuple(
+        "none" if t is None else "%.4f" % t for t in c["geometric_tortuosity"]))
+    print("  files: pores.json pores.png pores_voxels.raw pores_voxels.mhd")
+
+
+if __name__ == "__main__":
+    main()
