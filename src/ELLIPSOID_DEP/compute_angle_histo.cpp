@@ -11,6 +11,8 @@
 
 #include "compute_angle_histo.h"
 
+#include "compute_packing_ellipsoid.h"
+
 #include "atom.h"
 #include "error.h"
 #include "math_const.h"
@@ -23,9 +25,6 @@
 
 using namespace LAMMPS_NS;
 using MathConst::MY_PI;
-
-// sums after the nbins counts: 6 moment sums and the sample count
-static constexpr int NMOMENT = 7;
 
 /* ---------------------------------------------------------------------- */
 
@@ -153,7 +152,7 @@ void ComputeAngleHisto::add_moment(const double *u)
   m[3] += u[0] * u[1];
   m[4] += u[0] * u[2];
   m[5] += u[1] * u[2];
-  m[6] += 1.0;
+  m[SAMPLE_COUNT] += 1.0;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -171,8 +170,8 @@ void ComputeAngleHisto::tally()
       slab_compute->compute_vector();
       slab_compute->invoked_flag |= Compute::INVOKED_VECTOR;
     }
-    zlo = slab_compute->vector[4];
-    zhi = slab_compute->vector[5];
+    zlo = slab_compute->vector[ComputePackingEllipsoid::ZLO];
+    zhi = slab_compute->vector[ComputePackingEllipsoid::ZHI];
   }
   const bool use_slab = have_zlo || have_zhi || slab_compute;
 
@@ -181,7 +180,7 @@ void ComputeAngleHisto::tally()
   accumulate(zlo, zhi, use_slab);
   MPI_Allreduce(hist, hist_all, nsums, MPI_DOUBLE, MPI_SUM, world);
 
-  finish_vector(hist_all + nbins, hist_all[nbins + 6], hist_all + nbins + NMOMENT);
+  finish_vector(hist_all + nbins, hist_all[nbins + SAMPLE_COUNT], hist_all + nbins + NMOMENT);
 
   double total = 0.0;
   for (int k = 0; k < nbins; k++) total += hist_all[k];

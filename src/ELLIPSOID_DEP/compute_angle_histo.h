@@ -56,7 +56,7 @@ class ComputeAngleHisto : public Compute {
     bin(u[2]);
     add_moment(u);
   }
-  double *extra_sums() { return hist + nbins + 7; }    // this rank's nextra sums
+  double *extra_sums() { return hist + nbins + NMOMENT; }    // this rank's nextra sums
 
   const char *name;
   int nvalues;
@@ -70,7 +70,9 @@ class ComputeAngleHisto : public Compute {
   double zlo_user, zhi_user;
   char *slab_id;    // packing/ellipsoid compute giving zlo, zhi
   class Compute *slab_compute;
-  // nbins counts, the 6 moment sums, the sample count, the nextra sums (local and reduced)
+  // layout of the sums (local and reduced): nbins counts, then NMOMENT values (the 6 moment
+  // sums xx yy zz xy xz yz and at SAMPLE_COUNT the number of samples), then the nextra sums
+  static constexpr int SAMPLE_COUNT = 6, NMOMENT = 7;
   double *hist, *hist_all;
 
   void tally();

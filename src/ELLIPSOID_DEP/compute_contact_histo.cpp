@@ -22,10 +22,8 @@
 
 #include "atom.h"
 #include "error.h"
-#include "force.h"
-#include "update.h"
 
-#include "pair_granular_ellipsoid.h"
+#include "granular_ellipsoid_contacts.h"
 
 #include <cmath>
 #include <cstring>
@@ -33,14 +31,15 @@
 using namespace LAMMPS_NS;
 
 namespace {
+const char WHO[] = "Compute contact/histo";
 const char *const COLNAMES[ComputeContactHisto::NVALUES] = {
     "Fxx", "Fyy", "Fzz", "Fxy", "Fxz", "Fyz", "Fanis", "Fdev", "Nnormals"};
-}
+}    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 ComputeContactHisto::ComputeContactHisto(LAMMPS *lmp, int narg, char **arg) :
-    ComputeAngleHisto(lmp, narg, arg, "contact/histo", NVALUES, COLNAMES, 0), pair(nullptr),
+    ComputeAngleHisto(lmp, narg, arg, "contact/histo", NVALUES, COLNAMES, 0), contacts(nullptr),
     select_center(0)
 {
   parse_args(narg, arg);
@@ -64,8 +63,7 @@ bool ComputeContactHisto::parse_keyword(const char *key, const char *value)
 
 void ComputeContactHisto::init()
 {
-  pair = PairGranularEllipsoid::find(lmp, "Compute contact/histo");
-  pair->request_contacts();
+  contacts = ContactList::request(lmp, WHO);
   ComputeAngleHisto::init();
 }
 
@@ -73,38 +71,27 @@ void ComputeContactHisto::init()
 
 void ComputeContactHisto::prepare()
 {
-  if (!pair) error->all(FLERR, "Compute contact/histo used before initialisation (do a run)");
-  if (pair->contacts_timestep() != update->ntimestep)
-    error->all(FLERR,
-               "Compute contact/histo: the pair's contacts are not from the current step "
-               "(invoke it on a step where forces were computed; 'run 0' after defining it)");
+  ContactList::current(contacts, lmp, WHO);
 }
 
 /* ----------------------------------------------------------------------
-   One sample per contact and owned side: side i (always owned) with normal n, side j with -n
-   when j is owned or newton_pair is on (then the pair is on this rank only). With newton_pair
-   off a contact with a ghost j is in the list of j's owner too, which adds that side.
+   One sample per contact and owned side (ContactList): side i with normal n, side j with -n.
 ------------------------------------------------------------------------- */
 
 void ComputeContactHisto::accumulate(double zlo, double zhi, bool use_slab)
 {
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const int newton = force->newton_pair;
   int *mask = atom->mask;
   double **x = atom->x;
 
-  for (const auto &c : pair->contacts()) {
+  contacts->for_each_owned_side(lmp, WHO, [&](const ContactList::Contact &c, bool count_j) {
     const int i = c.i, j = c.j;
-    if (i < 0 || i >= nlocal || j < 0 || j >= nall)
-      error->one(FLERR, "Compute contact/histo: contact list does not match the atoms");
     const double len = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] +
                                  c.normal[2] * c.normal[2]);
-    if (!(len > 0.0)) continue;
+    if (!(len > 0.0)) return;
     const double n[3] = {c.normal[0] / len, c.normal[1] / len, c.normal[2] / len};
     bool take_i = (mask[i] & groupbit) != 0;
-    bool take_j = ((j < nlocal) || newton) && (mask[j] & groupbit);
-    if (!take_i && !take_j) continue;
+    bool take_j = count_j && (mask[j] & groupbit);
+    if (!take_i && !take_j) return;
     if (use_slab) {
       if (select_center) {
         take_i = take_i && x[i][2] >= zlo && x[i][2] < zhi;
@@ -121,7 +108,7 @@ void ComputeContactHisto::accumulate(double zlo, double zhi, bool use_slab)
       bin(-n[2]);
       add_moment(n);
     }
-  }
+  });
 }
 
 /* ---------------------------------------------------------------------- */
@@ -130,11 +117,11 @@ void ComputeContactHisto::finish_vector(const double *moments, double count, con
 {
   double F[6];
   for (int m = 0; m < 6; m++) F[m] = count > 0.0 ? moments[m] / count : 0.0;
-  for (int m = 0; m < 6; m++) vector[m] = F[m];
-  vector[6] = F[2] - 0.5 * (F[0] + F[1]);
+  for (int m = 0; m < 6; m++) vector[FABRIC + m] = F[m];
+  vector[ANISOTROPY] = F[2] - 0.5 * (F[0] + F[1]);
   const double tr3 = (F[0] + F[1] + F[2]) / 3.0;
   const double d0 = F[0] - tr3, d1 = F[1] - tr3, d2 = F[2] - tr3;
   const double ddot = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (F[3] * F[3] + F[4] * F[4] + F[5] * F[5]);
-  vector[7] = std::sqrt(1.5 * ddot);
-  vector[8] = count;
+  vector[DEVIATOR] = std::sqrt(1.5 * ddot);
+  vector[SAMPLES] = count;
 }

@@ -16,7 +16,9 @@ class ComputeContactHisto : public ComputeAngleHisto {
   ComputeContactHisto(class LAMMPS *, int, char **);
   void init() override;
 
-  static constexpr int NVALUES = 9;
+  // the global vector: fabric tensor F (xx yy zz xy xz yz), its anisotropy, deviator norm,
+  // number of samples
+  enum Value { FABRIC, ANISOTROPY = FABRIC + 6, DEVIATOR, SAMPLES, NVALUES };
 
  protected:
   bool parse_keyword(const char *, const char *) override;
@@ -25,7 +27,7 @@ class ComputeContactHisto : public ComputeAngleHisto {
   void finish_vector(const double *moments, double count, const double *extra) override;
 
  private:
-  class PairGranularEllipsoid *pair;
+  const class ContactList *contacts;
   int select_center;    // 0: contact point in slab, 1: the side's particle centre
 };
 

@@ -22,7 +22,6 @@
 #include "atom.h"
 #include "error.h"
 #include "math_const.h"
-#include "math_extra.h"
 
 #include "granular_ellipsoid_atoms.h"
 
@@ -111,11 +110,8 @@ void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
           order[q] = t;
         }
     const int axis = order[which_axis];
-    double rot[3][3];
-    double qn[4] = {quat[0], quat[1], quat[2], quat[3]};
-    MathExtra::qnormalize(qn);
-    MathExtra::quat_to_mat(qn, rot);
-    const double u[3] = {rot[0][axis], rot[1][axis], rot[2][axis]};    // body axis in box frame
+    const EllipsoidDep::Mat3 rot = EllipsoidDep::quaternion_rotation(quat);
+    const double u[3] = {rot(0, axis), rot(1, axis), rot(2, axis)};    // body axis in box frame
 
     if (fold) {
       bin(std::fabs(u[2]));
@@ -135,7 +131,7 @@ void ComputeOrientHisto::finish_vector(const double *moments, double npart, cons
     error->all(FLERR, "Compute orient/histo: every atom of the group must have a shape");
 
   for (int k = 0; k < NVALUES; k++) vector[k] = 0.0;
-  vector[6] = npart;
+  vector[PARTICLES] = npart;
   if (npart > 0.0) {
     double m[6];
     for (int k = 0; k < 6; k++) m[k] = moments[k] / npart;
@@ -148,11 +144,9 @@ void ComputeOrientHisto::finish_vector(const double *moments, double npart, cons
     Eigen::Vector3d dir = solver.eigenvectors().col(2);
     if (dir[2] < 0.0 || (dir[2] == 0.0 && (dir[0] < 0.0 || (dir[0] == 0.0 && dir[1] < 0.0))))
       dir = -dir;
-    vector[0] = evals[2];
-    vector[1] = dir[0];
-    vector[2] = dir[1];
-    vector[3] = dir[2];
-    vector[4] = Q(2, 2);
-    vector[5] = m[2];
+    vector[S] = evals[2];
+    for (int d = 0; d < 3; d++) vector[DIRECTOR + d] = dir[d];
+    vector[QZZ] = Q(2, 2);
+    vector[COS2] = m[2];
   }
 }

@@ -16,7 +16,8 @@ class ComputeOrientHisto : public ComputeAngleHisto {
   ComputeOrientHisto(class LAMMPS *, int, char **);
   void init() override;
 
-  static constexpr int NVALUES = 7;
+  // the global vector: order parameter S, director (x y z), Q_zz, <cos^2 theta>, particles
+  enum Value { S, DIRECTOR, QZZ = DIRECTOR + 3, COS2, PARTICLES, NVALUES };
 
  protected:
   bool parse_keyword(const char *, const char *) override;

@@ -22,9 +22,8 @@
 #include "memory.h"
 #include "update.h"
 
-#include "ellipsoid_contact.h"
 #include "granular_ellipsoid_atoms.h"
-#include "pair_granular_ellipsoid.h"
+#include "granular_ellipsoid_contacts.h"
 
 #include <cfloat>
 #include <cmath>
@@ -34,14 +33,15 @@
 using namespace LAMMPS_NS;
 
 namespace {
+const char WHO[] = "Compute packing/ellipsoid";
 const char *const COLNAMES[ComputePackingEllipsoid::NVALUES] = {
     "phi", "Nslab", "Z", "Z_norattler", "zlo", "zhi", "Nrattler", "dmean", "Vsolid"};
-}
+}    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 ComputePackingEllipsoid::ComputePackingEllipsoid(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), pair(nullptr), automatic(false), zlo_user(0.0), zhi_user(0.0),
+    Compute(lmp, narg, arg), contacts(nullptr), automatic(false), zlo_user(0.0), zhi_user(0.0),
     zlo_edge(0), zhi_edge(0), nbottom(0.0), ntop(0.0), floor_given(false), floor_z(0.0),
     surface_mode(0), rattler_min(2), nmax(0), ncontact(nullptr), active(nullptr)
 {
@@ -137,8 +137,7 @@ ComputePackingEllipsoid::~ComputePackingEllipsoid()
 
 void ComputePackingEllipsoid::init()
 {
-  pair = PairGranularEllipsoid::find(lmp, "Compute packing/ellipsoid");
-  pair->request_contacts();
+  contacts = ContactList::request(lmp, WHO);
   if (domain->triclinic)
     error->all(FLERR, "Compute packing/ellipsoid requires an orthogonal simulation box");
   if (domain->dimension != 3) error->all(FLERR, "Compute packing/ellipsoid requires 3d");
@@ -166,27 +165,20 @@ void ComputePackingEllipsoid::grow()
 }
 
 /* ----------------------------------------------------------------------
-   ncontact[i] for owned i = number of recorded contacts with both partners active.
-   Each contact of the list is counted once per owned side: side i always (i is owned); side j
-   here when j is owned, or when j is a ghost and newton_pair is on (the pair then appears on
-   this rank only, so the ghost's count is sent back to its owner). With newton_pair off a
-   contact with a ghost j is also in the list of j's owner, which counts that side.
+   ncontact[i] for owned i = number of recorded contacts with both partners active, counted
+   once per owned side (ContactList); with newton_pair on the ghosts' counts go back to their
+   owners.
 ------------------------------------------------------------------------- */
 
 void ComputePackingEllipsoid::count_contacts(int nall)
 {
-  const int nlocal = atom->nlocal;
-  const int newton = force->newton_pair;
   for (int i = 0; i < nall; i++) ncontact[i] = 0.0;
-  for (const auto &c : pair->contacts()) {
-    const int i = c.i, j = c.j;
-    if (i < 0 || i >= nlocal || j < 0 || j >= nall)
-      error->one(FLERR, "Compute packing/ellipsoid: contact list does not match the atoms");
-    if (active[i] == 0.0 || active[j] == 0.0) continue;
-    ncontact[i] += 1.0;
-    if (j < nlocal || newton) ncontact[j] += 1.0;
-  }
-  if (newton) { comm->reverse_comm(this); }
+  contacts->for_each_owned_side(lmp, WHO, [&](const ContactList::Contact &c, bool count_j) {
+    if (active[c.i] == 0.0 || active[c.j] == 0.0) return;
+    ncontact[c.i] += 1.0;
+    if (count_j) ncontact[c.j] += 1.0;
+  });
+  if (force->newton_pair) { comm->reverse_comm(this); }
 }
 
 /* ----------------------------------------------------------------------
@@ -270,11 +262,7 @@ void ComputePackingEllipsoid::slab_bounds(double &zlo, double &zhi, double &dmea
 void ComputePackingEllipsoid::compute_vector()
 {
   invoked_vector = update->ntimestep;
-  if (!pair) error->all(FLERR, "Compute packing/ellipsoid used before initialisation (do a run)");
-  if (pair->contacts_timestep() != update->ntimestep)
-    error->all(FLERR,
-               "Compute packing/ellipsoid: the pair's contacts are not from the current step "
-               "(invoke it on a step where forces were computed; 'run 0' after defining it)");
+  ContactList::current(contacts, lmp, WHO);
 
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -319,11 +307,13 @@ void ComputePackingEllipsoid::compute_vector()
     return x[i][2] >= zlo && x[i][2] < zhi;
   };
 
-  double sums[5] = {0.0, 0.0, 0.0, 0.0, 0.0};    // N, sum Z, N active, sum Z active, vsolid
+  // sums over the group in the slab, reduced together
+  enum { N, SUM_Z, N_ACTIVE, SUM_Z_ACTIVE, SOLID, NSUMS };
+  double sums[NSUMS] = {0.0, 0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < nlocal; i++)
     if ((mask[i] & groupbit) && in_slab(i)) {
-      sums[0] += 1.0;
-      sums[1] += ncontact[i];
+      sums[N] += 1.0;
+      sums[SUM_Z] += ncontact[i];
     }
 
   if (rattler_min > 0) {
@@ -343,24 +333,24 @@ void ComputePackingEllipsoid::compute_vector()
   }
   for (int i = 0; i < nlocal; i++)
     if ((mask[i] & groupbit) && active[i] != 0.0 && in_slab(i)) {
-      sums[2] += 1.0;
-      sums[3] += ncontact[i];
+      sums[N_ACTIVE] += 1.0;
+      sums[SUM_Z_ACTIVE] += ncontact[i];
     }
-  sums[4] = vsolid;
+  sums[SOLID] = vsolid;
 
-  double all[5];
-  MPI_Allreduce(sums, all, 5, MPI_DOUBLE, MPI_SUM, world);
+  double all[NSUMS];
+  MPI_Allreduce(sums, all, NSUMS, MPI_DOUBLE, MPI_SUM, world);
 
   const double vslab = domain->xprd * domain->yprd * (zhi - zlo);
-  vector[0] = vslab > 0.0 ? all[4] / vslab : 0.0;
-  vector[1] = all[0];
-  vector[2] = all[0] > 0.0 ? all[1] / all[0] : 0.0;
-  vector[3] = all[2] > 0.0 ? all[3] / all[2] : 0.0;
-  vector[4] = zlo;
-  vector[5] = zhi;
-  vector[6] = all[0] - all[2];
-  vector[7] = dmean;
-  vector[8] = all[4];
+  vector[PHI] = vslab > 0.0 ? all[SOLID] / vslab : 0.0;
+  vector[NSLAB] = all[N];
+  vector[Z] = all[N] > 0.0 ? all[SUM_Z] / all[N] : 0.0;
+  vector[Z_NORATTLER] = all[N_ACTIVE] > 0.0 ? all[SUM_Z_ACTIVE] / all[N_ACTIVE] : 0.0;
+  vector[ZLO] = zlo;
+  vector[ZHI] = zhi;
+  vector[NRATTLER] = all[N] - all[N_ACTIVE];
+  vector[DMEAN] = dmean;
+  vector[VSOLID] = all[SOLID];
 }
 
 /* ---------------------------------------------------------------------- */

@@ -26,10 +26,11 @@ class ComputePackingEllipsoid : public Compute {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
-  static constexpr int NVALUES = 9;
+  // the global vector (1-based in input scripts: PHI is c_ID[1])
+  enum Value { PHI, NSLAB, Z, Z_NORATTLER, ZLO, ZHI, NRATTLER, DMEAN, VSOLID, NVALUES };
 
  private:
-  class PairGranularEllipsoid *pair;
+  const class ContactList *contacts;
   bool automatic;    // auto mode: slab from the deposit's extent
   double zlo_user, zhi_user;
   int zlo_edge, zhi_edge;    // 1: EDGE (box bound)

@@ -16,7 +16,7 @@
 #include "memory.h"
 #include "update.h"
 
-#include "ellipsoid_contact.h"
+#include "ellipsoid_kernel.h"
 #include "granular_ellipsoid_atoms.h"
 
 #include <algorithm>

@@ -1,53 +1,33 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   ELLIPSOID_DEP: contact geometry of two general (triaxial) ellipsoids.
+   ELLIPSOID_DEP kernel: contact geometry of two general (triaxial) ellipsoids, and the result
+   types every query shares (Status, ContactSettings, ContactGeometry).
 
-   Engine independent: C++17 + Eigen only. No LAMMPS header, no MPI, no I/O,
-   no exceptions. LAMMPS styles, the LIGGGHTS adapter, tests and benchmarks
-   all call these functions.
+   Engine independent: C++17 + Eigen only. No LAMMPS header, no MPI, no I/O, no exceptions.
 
    Conventions
-   - An ellipsoid is {x : (x-c)^T Q (x-c) <= 1}, Q = R diag(1/a^2,1/b^2,1/c^2) R^T,
-     R the body-to-box rotation (columns = body axes), semi-axes in any order.
-   - M = Q^-1 = R diag(a^2,b^2,c^2) R^T gives the support function
-     h(n) = n.c + sqrt(n^T M n) and the support point s(n) = c + M n / sqrt(n^T M n).
-   - The signed penetration depth of A and B along a unit direction n (from A
-     towards B) is  d(n) = sqrt(n^T M_A n) + sqrt(n^T M_B n) - n.(c_B - c_A).
-     Its minimum over unit n is the penetration depth when the bodies overlap
-     and minus their distance when they are disjoint (separating axis theorem).
-     At the minimiser both surface normals are +-n and the support points lie
-     on a common normal line: this is the "exact" contact the paper's
-     correction step approximates, and what the correction converges to.
+   - A is the first body, B the second; every normal points from A towards B.
+   - The contact is the minimiser n* of the gap function d(n) (ellipsoid_gap.h) reached from
+     the start direction: overlap = d(n*) (> 0 in contact, minus the distance when disjoint),
+     point_a = s_A(n*), point_b = s_B(-n*), point = (point_a + point_b) / 2, and
+     R* = effective_radius(A, B, n*). At n* both surface normals are +-n* and the two support
+     points lie on a common normal line: the "exact" contact that the paper's correction step
+     approximates and converges to.
+
+   Degenerate cases
+   - Either body invalid (ellipsoid_shape.h), or a non-finite result: status Degenerate, the
+     rest of the geometry zero.
+   - Both spheres: closed form; coincident centres give n = +z (any direction is a minimiser).
+   - Coincident centres of non-spheres: the cold start uses the thinnest axis of A.
+   - Iteration cap reached with d > 0: NotConverged, the geometry of the last iterate (used by
+     the callers, and counted). d <= 0 proves separation whatever the cap: Separated.
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_CONTACT_H
 #define ELLIPSOID_DEP_ELLIPSOID_CONTACT_H
 
-#include <Eigen/Dense>
+#include "ellipsoid_shape.h"
 
 namespace EllipsoidDep {
-
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
-using Mat4 = Eigen::Matrix4d;
-
-struct Ellipsoid {
-  Vec3 center;
-  Mat3 rotation;             // body -> box; columns are the body axes in box coordinates
-  Vec3 semi_axes;            // along the body axes, any order, all > 0
-  Mat3 form;                 // Q = R diag(1/a^2) R^T  (the paper's A)
-  Mat3 inverse_form;         // M = R diag(a^2) R^T  (support function)
-  double bounding_radius;    // largest semi-axis
-  bool sphere;               // all semi-axes equal to round-off: closed-form path
-  bool finite = false;       // every entry finite and semi-axes > 0 (checked once, here)
-
-  // the paper's 4x4 homogeneous matrix: X^T H X = 0 on the surface, X = (x,1)
-  Mat4 homogeneous() const;
-  double volume() const;
-};
-
-// quaternion (w, x, y, z), unit; semi-axes (a, b, c) along body x, y, z
-Ellipsoid make_ellipsoid(const Vec3 &center, const double quat[4], const Vec3 &semi_axes);
-Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &semi_axes);
 
 // Knobs that trade speed for accuracy; pair_style keywords map onto these.
 struct ContactSettings {
@@ -55,7 +35,8 @@ struct ContactSettings {
   int max_iterations = 50;          // per contact evaluation
   double correction_angle = 0.0;    // radians; correct the Perram-type vector when it deviates
                                     // from the surface gradients by more than this (0: always)
-  double wang_band = 1e-9;          // relative band around a double root: "touching" (see .cpp)
+  double wang_band = 1e-9;          // relative band around a double root: "touching" (see
+                                    // ellipsoid_wang.h)
 };
 
 enum class Status {
@@ -65,22 +46,6 @@ enum class Status {
   NotConverged = 3,    // iteration cap reached; geometry holds the last iterate, flagged
   Degenerate = 4       // input cannot be handled (non-finite, zero axis); nothing computed
 };
-
-// Separating plane {x : n.x = offset}; A lies on the side n.x < offset, B on n.x > offset.
-struct SeparatingPlane {
-  Vec3 normal;    // unit, from A towards B
-  double offset;
-};
-
-// Support-function test: true when A lies strictly below and B strictly above the plane.
-bool plane_separates(const SeparatingPlane &plane, const Ellipsoid &a, const Ellipsoid &b);
-
-// Wang et al. decision from the roots of det(nu*A + B) (4x4 homogeneous matrices).
-struct WangResult {
-  Status status;            // Separated, Touching or Overlapping (or Degenerate)
-  SeparatingPlane plane;    // valid when Separated: built from the self-polar tetrahedron
-};
-WangResult wang_test(const Ellipsoid &a, const Ellipsoid &b, const ContactSettings &settings);
 
 // Geometry the force laws need. normal points from A to B.
 struct ContactGeometry {
@@ -105,67 +70,6 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
 
 // Closed-form sphere-sphere contact (used automatically when both are spheres).
 ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b);
-
-// Ellipsoid against the half-space {x : n.x <= offset} being solid (a wall whose
-// material is on the side opposite to n; n is the wall's unit normal pointing into
-// the particle region). Overlap > 0 when the ellipsoid dips below the plane.
-// normal in the result points from the particle into the wall (i.e. -n).
-ContactGeometry ellipsoid_plane_contact(const Ellipsoid &e, const Vec3 &wall_normal,
-                                        double wall_offset);
-
-// Volume of an ellipsoid between the planes z = zlo and z = zhi (closed form).
-double ellipsoid_slab_volume(const Ellipsoid &e, double zlo, double zhi);
-
-// Gaussian-curvature radius sqrt(R1 R2) of the surface where its outer normal is n.
-double gaussian_radius(const Ellipsoid &e, const Vec3 &unit_normal);
-
-// ---------------------------------------------------------------------------
-// The whole per-pair pipeline of the paper (Fig. 2), for callers that keep a
-// small per-pair cache between steps: bounding spheres -> cached separating plane
-// -> Wang test (disjoint: build and cache a plane) -> contact iteration warm-started
-// from the cached normal -> normal correction.
-
-struct PipelineSettings {
-  ContactSettings contact;
-  bool use_planes = true;    // cache separating planes of disjoint pairs
-  bool use_wang = true;      // false: go straight to the contact iteration
-};
-
-// Per-pair cache, PAIR_CACHE_SIZE doubles. Every entry changes sign when A and B are
-// swapped, so LAMMPS's default history transfer (negate on i/j flip) is exact:
-//   [0]   state: |s| = 0 nothing cached, 1 separating plane, 2 contact normal
-//   [1-3] unit normal from A to B (plane normal or last contact normal)
-//   [4]   u: the plane passes through c_A + (1/2 + u)(c_B - c_A)
-constexpr int PAIR_CACHE_SIZE = 5;
-
-struct PipelineCounters {
-  long long pairs = 0;               // pairs evaluated
-  long long bounding_rejects = 0;    // bounding spheres disjoint
-  long long plane_hits = 0;          // cached plane still separates
-  long long wang_calls = 0;
-  long long wang_separated = 0;    // Wang said disjoint (plane built)
-  long long contacts = 0;          // overlapping results
-  long long iterations = 0;        // summed over contact evaluations
-  long long corrections = 0;       // normal-correcting step applied
-  long long not_converged = 0;     // iteration cap reached (contact still used, flagged)
-  long long degenerate = 0;
-  long long continued = 0;    // contacts of the previous step re-evaluated without Wang
-  void add(const PipelineCounters &o);
-};
-
-// Evaluates one pair; updates cache and counters. Returns Overlapping (or NotConverged, still
-// with usable geometry) when there is a contact, else Separated.
-ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
-                              const PipelineSettings &settings, double *cache,
-                              PipelineCounters &counters);
-
-// --- additions (kernel issue 3): the two halves of wang_test, for the pipeline and benchmarks.
-// Decision only (no plane): Separated, Touching (inside wang_band), Overlapping or Degenerate.
-Status wang_classify(const Ellipsoid &a, const Ellipsoid &b, const ContactSettings &settings);
-// Proven separating plane (plane_separates() is true on success) from a loose minimisation of
-// d(n), started at *start (A to B) when given; false when none is found to round-off.
-bool build_separating_plane(const Ellipsoid &a, const Ellipsoid &b, SeparatingPlane &plane,
-                            const Vec3 *start = nullptr);
 
 }    // namespace EllipsoidDep
 

@@ -39,10 +39,7 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     impact_velocity(0.0), contact_time_reported(0.0), force_flag(0)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid", error);
-  if (!atom->ellipsoid_flag)
-    error->all(FLERR, "Fix wall/gran/ellipsoid requires atom_style ellipsoid");
-  if (!atom->rmass_flag || !atom->angmom_flag || !atom->torque_flag)
-    error->all(FLERR, "Fix wall/gran/ellipsoid requires per-atom mass, angmom and torque");
+  EllipsoidAtoms::require_granular_style(lmp, "Fix wall/gran/ellipsoid");
 
   // the force law: exactly the words pair_coeff takes; by default the wall is of the
   // particles' material (as LAMMPS's fix wall/gran), wall_material gives it its own
@@ -164,7 +161,7 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   wall_force.assign(3 * nwalls, 0.0);
   wall_force_all.assign(3 * nwalls, 0.0);
 
-  size_history = law.history_size() > 0 ? 3 * nwalls : 0;
+  size_history = law.history_size() * nwalls;
   restart_peratom = size_history > 0 ? 1 : 0;
   maxexchange = size_history;
   if (size_history) {
@@ -285,58 +282,42 @@ void FixWallGranEllipsoid::wall_forces()
 
   const EllipsoidAtoms atoms(atom);
   double **x = atom->x;
-  double **v = atom->v;
   double **f = atom->f;
   double **torque = atom->torque;
-  double *rmass = atom->rmass;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const double dt = update->dt;
   const int nwalls = static_cast<int>(walls.size());
-  const bool with_history = size_history > 0;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit) || !atoms.has_shape(i)) continue;
-    const double *s = atoms.shape(i);
-    const double bound = std::max(s[0], std::max(s[1], s[2]));
-    bool built = false, have_omega = false;
-    Ellipsoid e;
-    Vec3 omega;
+    const double bound = atoms.bounding_radius(i);
+    bool built = false, moving = false;
+    EllipsoidState state;
 
     for (int k = 0; k < nwalls; k++) {
       const Wall &w = walls[k];
-      double *history = with_history ? &history_one[i][3 * k] : nullptr;
+      double *history = wall_history(i, k);
       // bounding sphere clear of the plane: no contact
       const double height = w.normal[w.dim] * x[i][w.dim] - w.offset;
       ContactGeometry g;
       if (height < bound) {
         if (!built) {
-          e = atoms.ellipsoid(i);
+          state.shape = atoms.ellipsoid(i);
           built = true;
         }
-        g = ellipsoid_plane_contact(e, w.normal, w.offset);
+        g = ellipsoid_plane_contact(state.shape, w.normal, w.offset);
       }
       if (g.status != Status::Overlapping) {
-        if (history && history_update) history[0] = history[1] = history[2] = 0.0;
+        if (history && history_update) std::fill_n(history, law.history_size(), 0.0);
         continue;
       }
-      if (!have_omega) {
-        atoms.omega(i, omega.data());
-        have_omega = true;
+      if (!moving) {
+        atoms.add_motion(i, state);
+        moving = true;
       }
-      ContactMotion motion;
-      motion.v_i = Vec3(v[i][0], v[i][1], v[i][2]);
-      motion.omega_i = omega;
-      motion.branch_i = g.point - e.center;
-      motion.effective_mass = rmass[i];
-
-      double scratch[3];
-      double *hist = history;
-      if (history && !history_update) {
-        std::memcpy(scratch, history, sizeof(scratch));
-        hist = scratch;
-      }
-      const ContactForce result = law.compute(g, motion, dt, hist);
+      const TangentialHistory tangential(history, history_update);
+      const ContactForce result = law.compute(g, wall_motion(state, g.point), dt, tangential.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];

@@ -47,7 +47,7 @@ class FixWallGranEllipsoid : public Fix {
   };
   std::vector<Wall> walls;
   EllipsoidDep::ForceLaw law;
-  int size_history;        // 3 per wall when the law keeps a tangential history, else 0
+  int size_history;        // the law's history size per wall (tangential displacement)
   double **history_one;    // per atom, per wall
   bool history_update;
   double impact_velocity;          // keyword; 0: the fastest atom of the group
@@ -59,6 +59,11 @@ class FixWallGranEllipsoid : public Fix {
   int force_flag;
 
   void wall_forces();
+  // the tangential displacement of atom i against wall k (null without history)
+  double *wall_history(int i, int k) const
+  {
+    return size_history ? &history_one[i][law.history_size() * k] : nullptr;
+  }
 };
 
 }    // namespace LAMMPS_NS

@@ -6,11 +6,13 @@
 
 #include "atom.h"
 #include "atom_vec_ellipsoid.h"
+#include "error.h"
 #include "math_extra.h"
 
 #include <cstring>
 
 using namespace LAMMPS_NS;
+using EllipsoidDep::Vec3;
 
 static constexpr double INERTIA = 0.2;    // solid ellipsoid: I_x = m (b^2 + c^2) / 5
 
@@ -18,6 +20,13 @@ EllipsoidAtoms::EllipsoidAtoms(Atom *atom_in) :
     atom(atom_in), avec(dynamic_cast<AtomVecEllipsoid *>(atom_in->style_match("ellipsoid"))),
     super(atom_in->superellipsoid_flag != 0)
 {
+}
+
+void EllipsoidAtoms::require_granular_style(LAMMPS *lmp, const char *who)
+{
+  if (!lmp->atom->ellipsoid_flag) lmp->error->all(FLERR, "{} requires atom_style ellipsoid", who);
+  if (!lmp->atom->rmass_flag || !lmp->atom->angmom_flag || !lmp->atom->torque_flag)
+    lmp->error->all(FLERR, "{} requires per-atom mass, angmom and torque", who);
 }
 
 bool EllipsoidAtoms::has_shape(int i) const
@@ -66,9 +75,22 @@ void EllipsoidAtoms::omega(int i, double *w) const
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
 {
   const double *s = shape(i);
-  return EllipsoidDep::make_ellipsoid(
-      EllipsoidDep::Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]), quat(i),
-      EllipsoidDep::Vec3(s[0], s[1], s[2]));
+  return EllipsoidDep::make_ellipsoid(Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]), quat(i),
+                                      Vec3(s[0], s[1], s[2]));
+}
+
+EllipsoidState EllipsoidAtoms::state(int i) const
+{
+  EllipsoidState s{ellipsoid(i), {}, {}, 0.0};
+  add_motion(i, s);
+  return s;
+}
+
+void EllipsoidAtoms::add_motion(int i, EllipsoidState &s) const
+{
+  s.velocity = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
+  omega(i, s.omega.data());
+  s.mass = atom->rmass[i];
 }
 
 void EllipsoidAtomsWriter::set_ellipsoid(int i, const double *semi_axes, const double *quat)

@@ -1,29 +1,53 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   ELLIPSOID_DEP: read access to the ellipsoid bonus data of atoms (semi-axes, quaternion,
-   principal inertia, angular velocity, the kernel's Ellipsoid) for atom_style ellipsoid
-   and atom_style ellipsoid superellipsoid alike. Shared by the pair style, the fixes and
-   the computes. EllipsoidAtomsWriter adds the one write a creating fix needs.
+   ELLIPSOID_DEP: read access to ellipsoid atoms for every style of the package, for
+   atom_style ellipsoid and atom_style ellipsoid superellipsoid alike: the bonus data
+   (semi-axes, quaternion, principal inertia), the per-atom state a contact needs (the
+   kernel's Ellipsoid, velocity, angular velocity, mass), the motion at a contact built from
+   two such states (or one state and a resting wall), and the atom-style checks.
+   EllipsoidAtomsWriter adds the one write a creating fix needs.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANULAR_ELLIPSOID_ATOMS_H
 #define LMP_GRANULAR_ELLIPSOID_ATOMS_H
 
-#include "ellipsoid_contact.h"
+#include "ellipsoid_force_law.h"
+#include "ellipsoid_kernel.h"
 
 namespace LAMMPS_NS {
 class Atom;
 class AtomVecEllipsoid;
+class LAMMPS;
+
+// What one atom brings to a contact.
+struct EllipsoidState {
+  EllipsoidDep::Ellipsoid shape;
+  EllipsoidDep::Vec3 velocity;
+  EllipsoidDep::Vec3 omega;    // angular velocity, box frame
+  double mass;
+};
 
 class EllipsoidAtoms {
  public:
   explicit EllipsoidAtoms(Atom *atom);
 
-  bool has_shape(int i) const;                   // atom i carries ellipsoid bonus data
-  const double *shape(int i) const;              // semi-axes along the body axes
-  const double *quat(int i) const;               // (w, x, y, z), body -> box
+  // ERROR naming who ("Pair granular/ellipsoid") unless the atom style is ellipsoid with
+  // per-atom mass, angular momentum and torque
+  static void require_granular_style(LAMMPS *lmp, const char *who);
+
+  bool has_shape(int i) const;           // atom i carries ellipsoid bonus data
+  const double *shape(int i) const;      // semi-axes along the body axes
+  const double *quat(int i) const;       // (w, x, y, z), body -> box
+  double bounding_radius(int i) const    // largest semi-axis
+  {
+    const double *s = shape(i);
+    return EllipsoidDep::bounding_radius_of(EllipsoidDep::Vec3(s[0], s[1], s[2]));
+  }
   void inertia(int i, double *moments) const;    // principal moments (body frame)
   void omega(int i, double *w) const;            // angular velocity (box frame)
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
+  EllipsoidState state(int i) const;
+  // velocity, angular velocity and mass of state (for callers that build the shape first)
+  void add_motion(int i, EllipsoidState &state) const;
 
   Atom *atom;
   AtomVecEllipsoid *avec;
@@ -41,6 +65,36 @@ class EllipsoidAtomsWriter : public EllipsoidAtoms {
   // semi-axes along its body axes and its orientation (w, x, y, z), body -> box
   void set_ellipsoid(int i, const double *semi_axes, const double *quat);
 };
+
+// Motion at the contact point x of atoms i and j. A frozen atom (fix freeze) is immovable:
+// the effective mass is then the other atom's mass.
+inline EllipsoidDep::ContactMotion contact_motion(const EllipsoidState &i, const EllipsoidState &j,
+                                                  const EllipsoidDep::Vec3 &x, bool i_frozen,
+                                                  bool j_frozen)
+{
+  EllipsoidDep::ContactMotion m;
+  m.v_i = i.velocity;
+  m.v_j = j.velocity;
+  m.omega_i = i.omega;
+  m.omega_j = j.omega;
+  m.branch_i = x - i.shape.center;
+  m.branch_j = x - j.shape.center;
+  m.effective_mass = i.mass * j.mass / (i.mass + j.mass);
+  if (i_frozen) m.effective_mass = j.mass;
+  if (j_frozen) m.effective_mass = i.mass;
+  return m;
+}
+
+// Motion at the contact point x of atom i with a wall at rest (body j): effective mass m_i.
+inline EllipsoidDep::ContactMotion wall_motion(const EllipsoidState &i, const EllipsoidDep::Vec3 &x)
+{
+  EllipsoidDep::ContactMotion m;
+  m.v_i = i.velocity;
+  m.omega_i = i.omega;
+  m.branch_i = x - i.shape.center;
+  m.effective_mass = i.mass;
+  return m;
+}
 
 }    // namespace LAMMPS_NS
 

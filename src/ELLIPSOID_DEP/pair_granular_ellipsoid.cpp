@@ -16,7 +16,6 @@
 #include "granular_materials.h"
 #include "memory.h"
 #include "modify.h"
-#include "neigh_list.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -34,9 +33,9 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
-    fix_history(nullptr), size_history(PAIR_CACHE_SIZE), tangential_offset(PAIR_CACHE_SIZE),
-    history_update(true), freeze_group_bit(0), record_contacts(false), restart_history_size(0),
-    impact_velocity(0.0), contact_time(0.0), contact_time_reported(0.0)
+    fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
+    freeze_group_bit(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
+    contact_time_reported(0.0)
 {
   single_enable = 1;
   no_virial_fdotr_compute = 1;
@@ -46,8 +45,8 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   // History of pairs that do not touch (their cached separating plane) must survive a
   // neighbour-list rebuild: the pair list is not a size list, so ask for every stored pair.
   beyond_contact = 1;
-  // every cached value changes sign when i and j swap (see ellipsoid_contact.h), which is
-  // exactly the default transfer of fix NEIGH_HISTORY
+  // every cached value changes sign when i and j swap (PairCache), which is exactly the
+  // default transfer of fix NEIGH_HISTORY
   nondefault_history_transfer = 0;
 
   single_extra = 10;
@@ -61,18 +60,6 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
   fix_dummy =
       dynamic_cast<FixDummy *>(modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
-}
-
-/* ----------------------------------------------------------------------
-   the pair style in use, for the styles that read its contacts (who: "Compute xxx")
-------------------------------------------------------------------------- */
-
-PairGranularEllipsoid *PairGranularEllipsoid::find(LAMMPS *lmp, const char *who)
-{
-  auto *pair =
-      dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
-  if (!pair) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
-  return pair;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -216,10 +203,7 @@ void PairGranularEllipsoid::coeff(int narg, char **arg)
 
 void PairGranularEllipsoid::init_style()
 {
-  if (!atom->ellipsoid_flag)
-    error->all(FLERR, "Pair granular/ellipsoid requires atom_style ellipsoid");
-  if (!atom->rmass_flag || !atom->angmom_flag || !atom->torque_flag)
-    error->all(FLERR, "Pair granular/ellipsoid requires per-atom mass, angmom and torque");
+  EllipsoidAtoms::require_granular_style(lmp, "Pair granular/ellipsoid");
   if (comm->ghost_velocity == 0)
     error->all(FLERR,
                "Pair granular/ellipsoid requires ghost atoms store velocity: "
@@ -241,8 +225,7 @@ void PairGranularEllipsoid::init_style()
       std::string refusal;
       any_history |= law_of_pair(i, j, law, refusal) && law.history_size() > 0;
     }
-  size_history = PAIR_CACHE_SIZE + (any_history ? 3 : 0);
-  tangential_offset = PAIR_CACHE_SIZE;
+  size_history = PairCache::size(any_history);
   // the history fix reads its restart values with its own size: a different size would
   // misread every pair
   if (!fix_history && restart_history_size > 0 && restart_history_size != size_history)
@@ -285,11 +268,8 @@ void PairGranularEllipsoid::init_style()
     }
   }
   const EllipsoidAtoms atoms(atom);
-  for (int i = 0; i < atom->nlocal; i++) {
-    const double *shape = atoms.shape(i);
-    const double r = MAX(shape[0], MAX(shape[1], shape[2]));
-    local[atom->type[i]] = MAX(local[atom->type[i]], r);
-  }
+  for (int i = 0; i < atom->nlocal; i++)
+    local[atom->type[i]] = MAX(local[atom->type[i]], atoms.bounding_radius(i));
   MPI_Allreduce(local.data(), max_bounding_dynamic, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
 
   update_contact_time();
@@ -336,8 +316,8 @@ void PairGranularEllipsoid::update_contact_time()
       std::string refusal;
       if (!law_of_pair(i, j, law, refusal)) continue;    // init_one reports it
       const double ri = scales.flattest_radius[i], rj = scales.flattest_radius[j];
-      const double time =
-          hertz_contact_time(law.hertz_stiffness(ri * rj / (ri + rj)), mi * mj / (mi + mj), speed);
+      const double time = hertz_contact_time(law.hertz_stiffness(effective_radius(ri, rj)),
+                                             mi * mj / (mi + mj), speed);
       if (contact_time == 0.0 || time < contact_time) {
         contact_time = time;
         ti = i;
@@ -378,241 +358,19 @@ double PairGranularEllipsoid::init_one(int i, int j)
   return cut;
 }
 
-/* ---------------------------------------------------------------------- */
-
-void PairGranularEllipsoid::update_shapes()
-{
-  const EllipsoidAtoms atoms(atom);
-  const int nall = atom->nlocal + atom->nghost;
-  shapes.resize(nall);
-  omegas.resize(nall);
-  for (int i = 0; i < nall; i++) {
-    shapes[i] = atoms.ellipsoid(i);
-    atoms.omega(i, omegas[i].data());
-  }
-}
-
-/* ---------------------------------------------------------------------- */
-
-bool PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
-                                       ContactGeometry &geometry, ContactForce &result)
-{
-  geometry = evaluate_pair(shapes[i], shapes[j], pipeline, history, counters);
-  if (geometry.status != Status::Overlapping && geometry.status != Status::NotConverged)
-    return false;
-
-  const ForceLaw &force_law = laws[law];
-  ContactMotion motion;
-  motion.v_i = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
-  motion.v_j = Vec3(atom->v[j][0], atom->v[j][1], atom->v[j][2]);
-  motion.omega_i = omegas[i];
-  motion.omega_j = omegas[j];
-  motion.branch_i = geometry.point - shapes[i].center;
-  motion.branch_j = geometry.point - shapes[j].center;
-  const double mi = atom->rmass[i], mj = atom->rmass[j];
-  motion.effective_mass = mi * mj / (mi + mj);
-  if (atom->mask[i] & freeze_group_bit) motion.effective_mass = mj;
-  if (atom->mask[j] & freeze_group_bit) motion.effective_mass = mi;
-
-  // setup and single() look at the stored history without advancing it (dt = 0, on a copy),
-  // as pair granular does, so a restart reproduces the forces it was written with
-  double *tangential = nullptr;
-  double scratch[3];
-  if (force_law.history_size() > 0) {
-    tangential = history + tangential_offset;
-    if (!history_update) {
-      std::memcpy(scratch, tangential, sizeof(scratch));
-      tangential = scratch;
-    }
-  }
-  result = force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential);
-  return true;
-}
-
-/* ---------------------------------------------------------------------- */
-
-void PairGranularEllipsoid::compute(int eflag, int vflag)
-{
-  ev_init(eflag, vflag);
-  history_update = update->setupflag == 0;
-  update_shapes();
-  if (record_contacts) {
-    contact_list.clear();
-    contact_step = update->ntimestep;
-  }
-
-  double **x = atom->x;
-  double **f = atom->f;
-  double **torque = atom->torque;
-  int *type = atom->type;
-  const int nlocal = atom->nlocal;
-
-  const int inum = list->inum;
-  int *ilist = list->ilist;
-  int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-  int **firsttouch = fix_history->firstflag;
-  double **firsthistory = fix_history->firstvalue;
-
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    int *jlist = firstneigh[i];
-    int *touch = firsttouch[i];
-    double *allhistory = firsthistory[i];
-    const int jnum = numneigh[i];
-
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      double *history = &allhistory[size_history * jj];
-      const int law = law_index[type[i]][type[j]];
-
-      ContactGeometry geometry;
-      ContactForce result;
-      const bool contact = pair_force(i, j, law, history, geometry, result);
-      // keep the history of this pair while it caches a plane or a contact normal
-      touch[jj] = history[0] != 0.0 ? 1 : 0;
-      if (!contact) {
-        for (int k = tangential_offset; k < size_history; k++) history[k] = 0.0;
-        continue;
-      }
-
-      const double *fi = result.force_i.data();
-      f[i][0] += fi[0];
-      f[i][1] += fi[1];
-      f[i][2] += fi[2];
-      torque[i][0] += result.torque_i[0];
-      torque[i][1] += result.torque_i[1];
-      torque[i][2] += result.torque_i[2];
-      if (force->newton_pair || j < nlocal) {
-        f[j][0] -= fi[0];
-        f[j][1] -= fi[1];
-        f[j][2] -= fi[2];
-        torque[j][0] += result.torque_j[0];
-        torque[j][1] += result.torque_j[1];
-        torque[j][2] += result.torque_j[2];
-      }
-      if (evflag)
-        ev_tally_xyz(i, j, nlocal, force->newton_pair, 0.0, 0.0, fi[0], fi[1], fi[2],
-                     x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]);
-      if (record_contacts) {
-        Contact c;
-        c.i = i;
-        c.j = j;
-        c.overlap = geometry.overlap;
-        for (int d = 0; d < 3; d++) {
-          c.normal[d] = geometry.normal[d];
-          c.point[d] = geometry.point[d];
-          c.force[d] = fi[d];
-        }
-        contact_list.push_back(c);
-      }
-    }
-  }
-  local_counters(pvector);
-}
-
 /* ----------------------------------------------------------------------
-   one pair for compute pair/local: extra values
-   overlap, nx, ny, nz (i to j), cx, cy, cz (contact point), fx, fy, fz (force on i)
+   the counters (extract_counters), or "contact_time": the shortest Hertz contact time of
+   the last run start (dim 0; 0: no moving atoms to judge by)
 ------------------------------------------------------------------------- */
-
-double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double /*rsq*/,
-                                     double /*factor_coul*/, double /*factor_lj*/, double &fforce)
-{
-  for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
-  fforce = 0.0;
-  if (static_cast<int>(shapes.size()) < atom->nlocal + atom->nghost) update_shapes();
-
-  // the stored history of this pair, if the neighbour list still holds it
-  std::vector<double> history(size_history, 0.0);
-  if (fix_history && fix_history->firstvalue) {
-    int *jlist = list->firstneigh[i];
-    const int jnum = list->numneigh[i];
-    for (int jj = 0; jj < jnum; jj++)
-      if ((jlist[jj] & NEIGHMASK) == j) {
-        std::memcpy(history.data(), &fix_history->firstvalue[i][size_history * jj],
-                    size_history * sizeof(double));
-        break;
-      }
-  }
-  const bool saved = history_update;
-  history_update = false;
-  const PipelineCounters before = counters;
-  ContactGeometry geometry;
-  ContactForce result;
-  const bool contact = pair_force(i, j, law_index[itype][jtype], history.data(), geometry, result);
-  counters = before;    // single() is a look, not an evaluation
-  history_update = saved;
-  if (!contact) return 0.0;
-
-  svector[0] = geometry.overlap;
-  for (int d = 0; d < 3; d++) {
-    svector[1 + d] = geometry.normal[d];
-    svector[4 + d] = geometry.point[d];
-    svector[7 + d] = result.force_i[d];
-  }
-  // fforce * (x_i - x_j) is the force on i in LAMMPS's convention; use its normal part
-  const Vec3 dx = shapes[i].center - shapes[j].center;
-  const double r2 = dx.squaredNorm();
-  fforce = r2 > 0.0 ? result.force_i.dot(dx) / r2 : 0.0;
-  return 0.0;
-}
-
-/* ---------------------------------------------------------------------- */
-
-void PairGranularEllipsoid::local_counters(double *out) const
-{
-  const long long values[NUM_COUNTERS] = {
-      counters.pairs,      counters.plane_hits,  counters.wang_calls,    counters.contacts,
-      counters.iterations, counters.corrections, counters.not_converged, counters.bounding_rejects,
-      counters.degenerate, counters.continued};
-  for (int k = 0; k < NUM_COUNTERS; k++) out[k] = static_cast<double>(values[k]);
-}
-
-void PairGranularEllipsoid::global_counters(double *out) const
-{
-  double local[NUM_COUNTERS];
-  local_counters(local);
-  MPI_Allreduce(local, out, NUM_COUNTERS, MPI_DOUBLE, MPI_SUM, world);
-}
 
 void *PairGranularEllipsoid::extract(const char *name, int &dim)
 {
-  dim = 1;
-  if (std::strcmp(name, "counters") == 0) {
-    global_counters(counters_global);
-    return (void *) counters_global;
-  }
-  // shortest Hertz contact time of the last run start (0: no moving atoms to judge by)
+  if (void *counter = extract_counters(name, dim)) return counter;
   if (std::strcmp(name, "contact_time") == 0) {
     dim = 0;
     return (void *) &contact_time;
   }
   return nullptr;
-}
-
-void PairGranularEllipsoid::finish()
-{
-  double c[NUM_COUNTERS];
-  global_counters(c);
-  if (comm->me != 0) return;
-  const double mean_iterations = c[3] > 0.0 ? c[4] / c[3] : 0.0;
-  utils::logmesg(lmp,
-                 "granular/ellipsoid: {:.0f} pairs tested, {:.0f} bounding rejects, {:.0f} plane "
-                 "hits, {:.0f} Wang tests, {:.0f} contacts, {:.2f} mean iterations, {:.0f} "
-                 "corrections, {:.0f} not converged, {:.0f} degenerate, {:.0f} continued "
-                 "contacts\n",
-                 c[0], c[7], c[1], c[2], c[3], mean_iterations, c[5], c[6], c[8], c[9]);
-  if (c[6] > 0.0)
-    error->warning(FLERR,
-                   "granular/ellipsoid: {:.0f} contact evaluations did not converge "
-                   "within {} iterations (used with their last iterate)",
-                   c[6], pipeline.contact.max_iterations);
-  if (c[8] > 0.0)
-    error->warning(FLERR,
-                   "granular/ellipsoid: {:.0f} pair evaluations had degenerate input "
-                   "(non-finite positions or shapes) and gave no force",
-                   c[8]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -710,7 +468,5 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
 
 double PairGranularEllipsoid::memory_usage()
 {
-  return static_cast<double>(shapes.capacity() * sizeof(Ellipsoid) +
-                             omegas.capacity() * sizeof(Vec3) +
-                             contact_list.capacity() * sizeof(Contact));
+  return static_cast<double>(states.capacity() * sizeof(EllipsoidState)) + contacts.memory_usage();
 }

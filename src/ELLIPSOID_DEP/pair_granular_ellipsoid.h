@@ -9,8 +9,10 @@
 
 #include "pair.h"
 
-#include "ellipsoid_contact.h"
 #include "ellipsoid_force_law.h"
+#include "ellipsoid_kernel.h"
+#include "granular_ellipsoid_atoms.h"
+#include "granular_ellipsoid_contacts.h"
 
 #include <vector>
 
@@ -18,15 +20,6 @@ namespace LAMMPS_NS {
 
 class PairGranularEllipsoid : public Pair {
  public:
-  // One contact of the last force evaluation, for the computes (never a radius-sum guess).
-  struct Contact {
-    int i, j;            // local indices (j may be a ghost)
-    double normal[3];    // unit, from i to j
-    double point[3];     // contact point, box coordinates
-    double overlap;
-    double force[3];    // total force on i
-  };
-
   PairGranularEllipsoid(class LAMMPS *);
   ~PairGranularEllipsoid() override;
 
@@ -44,21 +37,14 @@ class PairGranularEllipsoid : public Pair {
   void finish() override;
   double memory_usage() override;
 
-  // The pair style granular/ellipsoid in use; an error naming who (e.g. "Compute
-  // contact/histo") when there is none.
-  static PairGranularEllipsoid *find(class LAMMPS *lmp, const char *who);
-  // Ask the pair to keep the list of contacts of each force evaluation (computes call this in
-  // their init; the list costs nothing when nobody asked).
-  void request_contacts() { record_contacts = true; }
-  const std::vector<Contact> &contacts() const { return contact_list; }
-  // timestep of the force evaluation that filled contacts() (-1: never recorded)
-  bigint contacts_timestep() const { return contact_step; }
-  // Counters since the pair was created: this rank's, and summed over all ranks.
+  // The contacts of the last force evaluation (recorded once a compute requested them).
+  ContactList &contact_list() { return contacts; }
+  // Counters since the pair was created: this rank's, and summed over all ranks, in the
+  // order of EllipsoidDep::PIPELINE_COUNTERS (also the order of compute pair's vector).
   void local_counters(double *out) const;
   void global_counters(double *out) const;
-  // pairs, plane hits, Wang tests, contacts, iterations, corrections, not converged,
-  // bounding rejects, degenerate, continued contacts (re-evaluated without the Wang test)
-  static constexpr int NUM_COUNTERS = 10;
+  void *extract_counters(const char *name, int &dim);    // null: not a counter name
+  static constexpr int NUM_COUNTERS = EllipsoidDep::NUM_PIPELINE_COUNTERS;
 
  protected:
   EllipsoidDep::PipelineSettings pipeline;
@@ -72,19 +58,16 @@ class PairGranularEllipsoid : public Pair {
 
   class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
-  int size_history;    // PAIR_CACHE_SIZE + tangential history (3) when any law needs it
-  int tangential_offset;
-  bool history_update;
+  int size_history;       // EllipsoidDep::PairCache::size(any law keeps a tangential history)
+  bool history_update;    // false: look at the stored history without advancing it
   int freeze_group_bit;
 
-  bool record_contacts;
-  std::vector<Contact> contact_list;
-  bigint contact_step = -1;
+  ContactList contacts;
+  double *pair_history(int i, int jj) const;
 
-  // per-atom geometry for owned + ghost atoms, rebuilt each force evaluation
-  std::vector<EllipsoidDep::Ellipsoid> shapes;
-  std::vector<EllipsoidDep::Vec3> omegas;
-  void update_shapes();
+  // per-atom state of owned + ghost atoms, rebuilt each force evaluation
+  std::vector<EllipsoidState> states;
+  void update_states();
 
   // one pair: geometry from the pipeline, then the force law; returns true on contact
   bool pair_force(int i, int j, int law, double *history, EllipsoidDep::ContactGeometry &geometry,

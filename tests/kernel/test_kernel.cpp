@@ -1,5 +1,5 @@
 // GoogleTest suite of the contact kernel, checked against the long-double oracle (oracle.h).
-#include "ellipsoid_contact.h"
+#include "ellipsoid_kernel.h"
 #include "oracle.h"
 
 #include <gtest/gtest.h>
@@ -142,6 +142,10 @@ TEST(Contact, AccuracyUpToOnePercent)
   std::printf("[accuracy <=1%%] worst normal angle %.3e rad, worst rel overlap err (>=1e-5) "
               "%.3e, worst abs overlap err / size %.3e\n",
               worst_angle, worst_rel, worst_abs);
+  // the table of doc/kernel.md
+  EXPECT_LT(worst_angle, 1e-8);
+  EXPECT_LT(worst_rel, 1e-8);
+  EXPECT_LT(worst_abs, 1e-12);
 }
 
 // Beyond 1 %: the kernel's local minimiser, re-refined in long double from the kernel's own
@@ -176,6 +180,10 @@ TEST(Contact, DeepOverlapsTenAndThirtyPercent)
     std::printf("[accuracy %g] vs long-double local min: angle %.3e rad, rel overlap %.3e; "
                 "%d/%zu cases found a non-global local min (worst excess %.3e rel)\n",
                 rel, worst_local, worst_rel_local, not_global, cases.size(), worst_global_rel);
+    // the table of doc/kernel.md: every case found the global minimum
+    EXPECT_EQ(not_global, 0);
+    EXPECT_LT(worst_local, 1e-8);
+    EXPECT_LT(worst_rel_local, 1e-8);
   }
 }
 
@@ -336,6 +344,9 @@ TEST(Wang, DecisionNeverWrong)
               "disjoint pairs "
               "called Overlapping (widest gap/size %.3e)\n",
               touching, 2 * cases.size(), widest_touch, overlapping_disjoint, widest_od);
+  // the decision band of doc/kernel.md
+  EXPECT_LT(widest_touch, 1e-6);
+  EXPECT_LE(widest_od, 1e-9);
 }
 
 TEST(Wang, SeparatedFarAndDegenerate)
@@ -398,29 +409,26 @@ TEST(Pipeline, CachedPlaneAndSwap)
   for (const auto &c : cases) {
     SCOPED_TRACE(c.label);
     if ((c.b.center - c.a.center).norm() > c.a.bounding_radius + c.b.bounding_radius) continue;
-    double cache[PAIR_CACHE_SIZE] = {0, 0, 0, 0, 0};
+    double cache[PairCache::PIPELINE_SIZE] = {0, 0, 0, 0, 0};
+    const PairCache history(cache);
     PipelineCounters cnt;
     auto g = evaluate_pair(c.a, c.b, ps, cache, cnt);
     ASSERT_EQ(g.status, Status::Separated);
-    ASSERT_EQ(cache[0], 1.0);
+    ASSERT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
     EXPECT_EQ(cnt.wang_calls, 1);
     // the stored plane, rebuilt from (n, u), separates
-    SeparatingPlane pl;
-    pl.normal = Vec3(cache[1], cache[2], cache[3]);
     const Vec3 dc = c.b.center - c.a.center;
-    pl.offset = pl.normal.dot(c.a.center + (0.5 + cache[4]) * dc);
+    const SeparatingPlane pl = history.plane(c.a.center, dc);
     EXPECT_TRUE(plane_separates(pl, c.a, c.b));
     // second call with the same positions: the cached plane hits
     g = evaluate_pair(c.a, c.b, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Separated);
     EXPECT_EQ(cnt.plane_hits, 1);
     EXPECT_EQ(cnt.wang_calls, 1);
-    // swapped pair with the negated cache (LAMMPS history transfer): the same plane
-    double sw[PAIR_CACHE_SIZE];
-    for (int i = 0; i < PAIR_CACHE_SIZE; ++i) sw[i] = -cache[i];
-    SeparatingPlane ps2;
-    ps2.normal = Vec3(sw[1], sw[2], sw[3]);
-    ps2.offset = ps2.normal.dot(c.b.center + (0.5 + sw[4]) * (-dc));
+    // swapped pair with the swapped cache (LAMMPS history transfer): the same plane
+    double sw[PairCache::PIPELINE_SIZE];
+    PairCache::swapped(cache, sw, PairCache::PIPELINE_SIZE);
+    const SeparatingPlane ps2 = PairCache(sw).plane(c.b.center, -dc);
     EXPECT_NEAR(ps2.offset, -pl.offset, 1e-12 * (1 + std::fabs(pl.offset)));
     g = evaluate_pair(c.b, c.a, ps, sw, cnt);
     EXPECT_EQ(cnt.plane_hits, 2);
@@ -428,20 +436,20 @@ TEST(Pipeline, CachedPlaneAndSwap)
     const Ellipsoid b2 = place_b(c.a, c.b.rotation, c.b.semi_axes, c.n, 1e-3 * c.size);
     g = evaluate_pair(c.a, b2, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Overlapping);
-    EXPECT_EQ(cache[0], 2.0);
+    EXPECT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Contact));
     EXPECT_EQ(cnt.contacts, 1);
     const auto ref = ellipsoid_contact(c.a, b2, ps.contact);
     EXPECT_LT((g.normal - ref.normal).norm(), 1e-9);
     // without Wang / planes: same contact
     PipelineSettings raw;
     raw.use_planes = raw.use_wang = false;
-    double c2[PAIR_CACHE_SIZE] = {0, 0, 0, 0, 0};
+    double c2[PairCache::PIPELINE_SIZE] = {0, 0, 0, 0, 0};
     const auto g2 = evaluate_pair(c.a, b2, raw, c2, cnt);
     EXPECT_LT((g2.normal - ref.normal).norm(), 1e-9);
     // far apart: bounding reject clears the cache
     const Ellipsoid far = make_ellipsoid(c.a.center + Vec3(100, 0, 0), c.b.rotation, c.b.semi_axes);
     evaluate_pair(c.a, far, ps, cache, cnt);
-    EXPECT_EQ(cache[0], 0.0);
+    EXPECT_EQ(cache[PairCache::STATE], 0.0);
     EXPECT_EQ(cnt.bounding_rejects, 1);
   }
 }
@@ -480,12 +488,13 @@ TEST(Degenerate, NonFiniteAndZeroAxis)
             Status::Degenerate);
   PipelineSettings ps;
   PipelineCounters cnt;
-  double cache[PAIR_CACHE_SIZE] = {2, 0, 0, 1, 0};
+  double cache[PairCache::PIPELINE_SIZE];
+  PairCache(cache).store_contact(Vec3(0, 0, 1));
   const auto g =
       evaluate_pair(a, make_ellipsoid(Vec3(NAN, 0, 0), q, Vec3(1, 2, 3)), ps, cache, cnt);
   EXPECT_EQ(g.status, Status::Degenerate);
   EXPECT_EQ(cnt.degenerate, 1);
-  EXPECT_EQ(cache[0], 0.0);
+  EXPECT_EQ(cache[PairCache::STATE], 0.0);
 }
 
 // ---------------------------------------------------------------------------

@@ -5,6 +5,7 @@ sample per-atom and per-contact data, and reduce them to the robustness checks o
 Everything is read back from LAMMPS output files written at full precision, so the checks
 do not depend on the plugin's own kernel.
 """
+import json
 import math
 import os
 import re
@@ -13,23 +14,21 @@ import numpy as np
 
 import ed_helpers_pour as h
 
-COUNTER_LINE = re.compile(
-    r"granular/ellipsoid: (\d+) pairs tested, (\d+) bounding rejects, (\d+) plane hits, "
-    r"(\d+) Wang tests, (\d+) contacts, ([0-9.]+) mean iterations, (\d+) corrections, "
-    r"(\d+) not converged")
+COUNTER_PREFIX = "granular/ellipsoid counters: "
 
 ATOM_COLS = ("id x y z vx vy vz fx fy fz tqx tqy tqz quatw quati quatj quatk "
              "shapex shapey shapez").split()
 
 
 def counters(log):
-    """The last counter line the pair printed (cumulative over the runs of the instance)."""
-    found = COUNTER_LINE.findall(log)
+    """The pair's counters by name from the last JSON line it printed at the end of a run
+    (cumulative over the runs of the instance), plus mean_iterations = iterations/contacts."""
+    found = [line[len(COUNTER_PREFIX):] for line in log.splitlines()
+             if line.startswith(COUNTER_PREFIX)]
     assert found, "the pair printed no counter line"
-    c = found[-1]
-    return {"pairs": int(c[0]), "bounding": int(c[1]), "plane_hits": int(c[2]),
-            "wang": int(c[3]), "contacts": int(c[4]), "mean_iterations": float(c[5]),
-            "corrections": int(c[6]), "not_converged": int(c[7])}
+    c = json.loads(found[-1])
+    c["mean_iterations"] = c["iterations"] / c["contacts"] if c["contacts"] else 0.0
+    return c
 
 
 def read_dump_frames(path):

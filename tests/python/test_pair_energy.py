@@ -3,6 +3,8 @@
 Random orientations, an off-centre approach so that the bodies spin up, a time step that
 resolves the contact in about 50 steps. Targets (issue 4): 0.1 % for a/c <= 4, 1 % up to 10.
 """
+import json
+
 import numpy as np
 import pytest
 
@@ -96,21 +98,34 @@ def test_elastic_collision_conserves_energy(ratio, tolerance, seed):
     assert abs(e1 - e0) / e0 < tolerance, f"relative energy change {(e1 - e0) / e0:.2e}"
 
 
-def test_counters_follow_the_pipeline():
+def test_counters_follow_the_pipeline(tmp_path):
     """compute pair exposes the pair's counters: an approach passes through bounding rejects,
-    cached planes and Wang tests before the contact, and every evaluation converges."""
+    cached planes and Wang tests before the contact, and every evaluation converges. The
+    counters are read by name from the pair's JSON line at the end of the run and must equal
+    Pair::extract("counters/NAME") and the vector of compute pair, whose order is the JSON's."""
     lmp = head_on_pair(2.5, 77, gap=1.0)
-    lmp.commands_string("""
+    log = tmp_path / "log.lammps"
+    lmp.commands_string(f"""
+        log {log}
         compute counters all pair granular/ellipsoid
         thermo_style custom step c_counters[*]
         thermo 6000
         timestep 5e-4
         run 6000
         """)
-    names = ["pairs", "plane_hits", "wang_calls", "contacts", "iterations", "corrections",
-             "not_converged", "bounding_rejects", "degenerate", "continued"]
-    c = {name: lmp.numpy.extract_compute("counters", 0, 1)[k] for k, name in enumerate(names)}
+    vector = list(lmp.numpy.extract_compute("counters", 0, 1))
+    extracted = {}
+    lmp.command("log none")
+    lines = [line for line in log.read_text().splitlines()
+             if line.startswith("granular/ellipsoid counters: ")]
+    assert len(lines) == 1, lines
+    c = json.loads(lines[0][len("granular/ellipsoid counters: "):])
+    for name in c:
+        extracted[name] = lmp.extract_pair("counters/" + name)
+    assert lmp.extract_pair("counters/no_such_counter") is None
     lmp.close()
+    assert extracted == c, (extracted, c)
+    assert vector == list(c.values()), (vector, c)
     assert c["bounding_rejects"] > 0 and c["plane_hits"] > 0 and c["wang_calls"] > 0, c
     assert c["contacts"] > 10, c
     assert c["plane_hits"] > c["wang_calls"], "cached planes should spare most Wang tests"

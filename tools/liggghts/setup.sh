@@ -100,8 +100,12 @@ sync_file() { cmp -s "$1" "$2" || { cp "$1" "$2"; say "  updated $(basename "$2"
 sync_adapter() {
   local f
   for f in "$HERE"/adapter/*; do [ -f "$f" ] || continue; sync_file "$f" "$SRC/$(basename "$f")"; done
-  sync_file "$ROOT/src/ELLIPSOID_DEP/ellipsoid_contact.h" "$SRC/ellipsoid_contact.h"
-  sync_file "$ROOT/src/ELLIPSOID_DEP/ellipsoid_contact.cpp" "$SRC/ellipsoid_contact.cpp"
+  # the contact kernel: every src/ELLIPSOID_DEP/ellipsoid_* file but the LAMMPS plugin entry
+  # and the force laws (LIGGGHTS uses its own)
+  for f in "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.h "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.cpp; do
+    case "$(basename "$f")" in ellipsoid_dep_plugin.cpp | ellipsoid_force_law*) continue ;; esac
+    sync_file "$f" "$SRC/$(basename "$f")"
+  done
 }
 
 build() {

@@ -5,11 +5,11 @@
 
 #include "ellipsoid_dep_bridge.h"
 
-#include "ellipsoid_contact.h"
+#include "ellipsoid_kernel.h"
 
 namespace EllipsoidDepLiggghts {
 
-static_assert(CACHE_SIZE == EllipsoidDep::PAIR_CACHE_SIZE, "per-pair cache size mismatch");
+static_assert(CACHE_SIZE == EllipsoidDep::PairCache::PIPELINE_SIZE, "per-pair cache size mismatch");
 
 namespace {
   EllipsoidDep::PipelineCounters totals;
@@ -28,9 +28,9 @@ namespace {
   }
 }    // namespace
 
-bool pair_contact(const double *xi, const double *qi, const double *shapei,
-                  const double *xj, const double *qj, const double *shapej,
-                  const Settings &settings, double *cache, Contact &out)
+bool pair_contact(const double *xi, const double *qi, const double *shapei, const double *xj,
+                  const double *qj, const double *shapej, const Settings &settings, double *cache,
+                  Contact &out)
 {
   using namespace EllipsoidDep;
   PipelineSettings ps;
@@ -63,20 +63,35 @@ double gaussian_radius(const double *x, const double *q, const double *shape, co
   return EllipsoidDep::gaussian_radius(e, EllipsoidDep::Vec3(n[0], n[1], n[2]).normalized());
 }
 
-Counters counters()
+const char *cache_slot_name(int k)
 {
-  Counters c;
-  c.pairs = totals.pairs;
-  c.bounding_rejects = totals.bounding_rejects;
-  c.plane_hits = totals.plane_hits;
-  c.wang_calls = totals.wang_calls;
-  c.wang_separated = totals.wang_separated;
-  c.contacts = totals.contacts;
-  c.iterations = totals.iterations;
-  c.corrections = totals.corrections;
-  c.not_converged = totals.not_converged;
-  c.degenerate = totals.degenerate;
-  return c;
+  using EllipsoidDep::PairCache;
+  static const char *const names[CACHE_SIZE] = {"ellipsoid_dep_state", "ellipsoid_dep_nx",
+                                                "ellipsoid_dep_ny", "ellipsoid_dep_nz",
+                                                "ellipsoid_dep_u"};
+  static_assert(PairCache::STATE == 0 && PairCache::NORMAL == 1 && PairCache::PLANE_U == 4,
+                "slot names follow the PairCache layout");
+  return names[k];
+}
+
+bool cache_in_use(double *cache)
+{
+  return EllipsoidDep::PairCache(cache).in_use();
+}
+
+int counter_count()
+{
+  return EllipsoidDep::NUM_PIPELINE_COUNTERS;
+}
+
+const char *counter_name(int k)
+{
+  return EllipsoidDep::PIPELINE_COUNTERS[k].name;
+}
+
+long long counter_value(int k)
+{
+  return totals.*EllipsoidDep::PIPELINE_COUNTERS[k].member;
 }
 
 }    // namespace EllipsoidDepLiggghts

@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP adapter for LIGGGHTS-PUBLIC 3.8: a plain-double bridge to the engine-independent
-   contact kernel (src/ELLIPSOID_DEP/ellipsoid_contact.{h,cpp} of the ELLIPSOID_DEP repository).
+   contact kernel (src/ELLIPSOID_DEP/ellipsoid_*.{h,cpp} of the ELLIPSOID_DEP repository).
 
    This header has no Eigen and no LIGGGHTS include, so LIGGGHTS's heavy contact-model template
    units do not see Eigen; ellipsoid_dep_bridge.cpp is the only file that includes the kernel.
@@ -13,9 +13,14 @@
 
 namespace EllipsoidDepLiggghts {
 
-// doubles of per-pair cache (== EllipsoidDep::PAIR_CACHE_SIZE, checked in the .cpp). Every entry
-// changes sign when i and j are swapped: LIGGGHTS's history "newtonflag 1" is exact for all.
+// doubles of per-pair cache (== EllipsoidDep::PairCache::PIPELINE_SIZE, checked in the .cpp).
+// Every entry changes sign when i and j are swapped: LIGGGHTS's history "newtonflag 1" is exact
+// for all.
 const int CACHE_SIZE = 5;
+// name of cache slot k < CACHE_SIZE (for LIGGGHTS's history registry)
+const char *cache_slot_name(int k);
+// true while the cache keeps a separating plane or a contact normal (keep the pair's history)
+bool cache_in_use(double *cache);
 
 // kernel knobs (EllipsoidDep::PipelineSettings)
 struct Settings {
@@ -28,29 +33,29 @@ struct Settings {
 };
 
 struct Contact {
-  int status = 0;                 // EllipsoidDep::Status (0 separated, 2 overlapping, 3 not converged, 4 degenerate)
-  double normal[3] = {0, 0, 0};   // unit, from body i (A) to body j (B)
-  double overlap = 0.0;           // > 0 in contact; -distance (or a lower bound) otherwise
-  double point[3] = {0, 0, 0};    // contact point (box frame)
-  double effective_radius = 0.0;  // R* = R_i R_j / (R_i + R_j), Gaussian-curvature radii
+  int status =
+      0;    // EllipsoidDep::Status (0 separated, 2 overlapping, 3 not converged, 4 degenerate)
+  double normal[3] = {0, 0, 0};     // unit, from body i (A) to body j (B)
+  double overlap = 0.0;             // > 0 in contact; -distance (or a lower bound) otherwise
+  double point[3] = {0, 0, 0};      // contact point (box frame)
+  double effective_radius = 0.0;    // R* = R_i R_j / (R_i + R_j), Gaussian-curvature radii
 };
 
 // One pair. x: centre, q: unit quaternion (w, x, y, z) body -> box, shape: semi-axes along the
 // body axes (LIGGGHTS's superquadric `shape`). cache: CACHE_SIZE doubles kept per pair.
 // Returns true when the bodies overlap (out holds the geometry).
-bool pair_contact(const double *xi, const double *qi, const double *shapei,
-                  const double *xj, const double *qj, const double *shapej,
-                  const Settings &settings, double *cache, Contact &out);
+bool pair_contact(const double *xi, const double *qi, const double *shapei, const double *xj,
+                  const double *qj, const double *shapej, const Settings &settings, double *cache,
+                  Contact &out);
 
 // Gaussian-curvature radius sqrt(R1 R2) of the ellipsoid where its outer unit normal is n.
 double gaussian_radius(const double *x, const double *q, const double *shape, const double *n);
 
-// Totals over this process (EllipsoidDep::PipelineCounters), for reporting.
-struct Counters {
-  long long pairs, bounding_rejects, plane_hits, wang_calls, wang_separated, contacts,
-      iterations, corrections, not_converged, degenerate;
-};
-Counters counters();
+// Totals over this process of the kernel's counters (EllipsoidDep::PIPELINE_COUNTERS), for
+// reporting: counter k < counter_count() has a machine-readable name and a value.
+int counter_count();
+const char *counter_name(int k);
+long long counter_value(int k);
 
 }    // namespace EllipsoidDepLiggghts
 

@@ -9,7 +9,7 @@
    the kernel's ContactGeometry back into SurfacesIntersectData (en, deltan, contact_point,
    reff), which LIGGGHTS's normal / tangential / rolling / cohesion models then consume.
 
-   Per-pair cache: the kernel's PAIR_CACHE_SIZE (5) doubles live in LIGGGHTS's contact history
+   Per-pair cache: the kernel's PairCache::PIPELINE_SIZE (5) doubles live in LIGGGHTS's contact history
    (newtonflag 1: every entry changes sign under i <-> j). The pair keeps the
    CONTACT_SURFACE_MODEL contact flag while the cache holds something, so a cached separating
    plane survives re-neighbouring (fix contacthistory keeps only flagged pairs).
@@ -93,12 +93,10 @@ namespace ContactModels
     {
       if (!atom->superquadric_flag)
         error->one(FLERR, "surface ellipsoid needs atom_style superquadric");
-      // the kernel's per-pair cache: state, normal (3), plane offset; all odd under i <-> j
-      cache_offset = hsetup->add_history_value("ellipsoid_dep_state", "1");
-      hsetup->add_history_value("ellipsoid_dep_nx", "1");
-      hsetup->add_history_value("ellipsoid_dep_ny", "1");
-      hsetup->add_history_value("ellipsoid_dep_nz", "1");
-      hsetup->add_history_value("ellipsoid_dep_u", "1");
+      // the kernel's per-pair cache (PairCache): every slot odd under i <-> j ("1")
+      cache_offset = hsetup->add_history_value(EllipsoidDepLiggghts::cache_slot_name(0), "1");
+      for (int k = 1; k < EllipsoidDepLiggghts::CACHE_SIZE; k++)
+        hsetup->add_history_value(EllipsoidDepLiggghts::cache_slot_name(k), "1");
       if (cmb) cmb->add_history_offset("ellipsoid_dep_cache_offset", cache_offset);
     }
 
@@ -151,7 +149,7 @@ namespace ContactModels
 
       // keep the history (cached plane or normal) across re-neighbouring while it holds something
       if (sidata.contact_flags) {
-        if (cache[0] != 0.0) *sidata.contact_flags |= CONTACT_SURFACE_MODEL;
+        if (EllipsoidDepLiggghts::cache_in_use(cache)) *sidata.contact_flags |= CONTACT_SURFACE_MODEL;
         else *sidata.contact_flags &= ~CONTACT_SURFACE_MODEL;
       }
       if (!touching) return false;

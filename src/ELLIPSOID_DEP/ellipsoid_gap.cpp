@@ -1,0 +1,259 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP kernel: minimiser of the gap function and its cold start
+   (see ellipsoid_gap.h for the conventions, doc/kernel.md for the maths).
+------------------------------------------------------------------------- */
+
+#include "ellipsoid_gap.h"
+
+namespace EllipsoidDep {
+
+namespace {
+
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+  // Orthonormal tangent basis of a unit vector (branch-free-ish, Duff et al. 2017).
+  inline void tangent_basis(const Vec3 &n, Vec3 &t1, Vec3 &t2)
+  {
+    const double s = std::copysign(1.0, n[2]);
+    const double a = -1.0 / (s + n[2]);
+    const double b = n[0] * n[1] * a;
+    t1 = Vec3(1.0 + s * n[0] * n[0] * a, s * b, -s * n[0]);
+    t2 = Vec3(b, s + n[1] * n[1] * a, -n[1]);
+  }
+
+  inline double min_axis(const Ellipsoid &e)
+  {
+    return e.semi_axes.minCoeff();
+  }
+
+  // Direction of the smallest semi-axis (fallback start when the centre line is undefined).
+  inline Vec3 thin_axis(const Ellipsoid &e)
+  {
+    int k = 0;
+    e.semi_axes.minCoeff(&k);
+    return e.rotation.col(k);
+  }
+
+  // Paper eqs. (4)-(5): X = (A + l B)^-1 (A X_A + l B X_B), l = |(X - X_B)^T A (X - X_A)|.
+  // Returns the point of the surface of "second" that minimises the potential of "first".
+  Vec3 lagrange_point(const Ellipsoid &first, const Ellipsoid &second, int iters)
+  {
+    const Mat3 &qa = first.form;
+    const Mat3 &qb = second.form;
+    const Vec3 qaxa = qa * first.center, qbxb = qb * second.center;
+    double lambda = 1.0;
+    Vec3 x = 0.5 * (first.center + second.center);
+    for (int k = 0; k < iters; ++k) {
+      const Mat3 m = qa + lambda * qb;
+      const Vec3 xn = m.llt().solve(qaxa + lambda * qbxb);
+      if (!finite3(xn)) break;
+      x = xn;
+      const double ln = std::fabs((x - second.center).dot(qa * (x - first.center)));
+      if (!(ln > 0.0) || !std::isfinite(ln)) break;
+      lambda = ln;
+    }
+    return x;
+  }
+
+  // Backtracking along the retraction n' = normalize(n + v1 t1 + v2 t2): halves the tangent
+  // step (v1, v2) until accept(d(n')) or max_halvings halvings were made. Returns false when
+  // the halvings ran out (trial then holds the last point tried).
+  template <class Accept>
+  bool backtrack(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, const Vec3 &n,
+                 const Vec3 &t1, const Vec3 &t2, double v1, double v2, int max_halvings,
+                 Accept accept, Vec3 &trial_n, GapEval &trial)
+  {
+    trial_n = (n + v1 * t1 + v2 * t2).normalized();
+    trial = evaluate_gap(a, b, dc, trial_n);
+    int k = 0;
+    while (!accept(trial.d) && k < max_halvings) {
+      v1 *= 0.5;
+      v2 *= 0.5;
+      trial_n = (n + v1 * t1 + v2 * t2).normalized();
+      trial = evaluate_gap(a, b, dc, trial_n);
+      ++k;
+    }
+    return k < max_halvings;
+  }
+
+}    // namespace
+
+// The 2x2 Hessian is T^T (H_A + H_B) T - d I with H = M/h - (Mn)(Mn)^T/h^3 (exact for the
+// degree-1 extension); indefinite Hessians are shifted and long steps are line-searched.
+GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, Vec3 n, double tol,
+                        int max_iter)
+{
+  GapMinimum r;
+  r.n = n;
+  r.ev = evaluate_gap(a, b, dc, n);
+  r.iterations = 0;
+  r.converged = false;
+  const double size = std::min(min_axis(a), min_axis(b));
+  for (int it = 0; it < max_iter; ++it) {
+    const GapEval &ev = r.ev;
+    const double gn = ev.grad.dot(r.n);
+    const Vec3 gt = ev.grad - gn * r.n;
+    // round-off floor: d and grad carry ~eps*(|dc| + h) absolute error from cancellation
+    const double floor = 32.0 * kEps * (dc.norm() + ev.ha + ev.hb);
+    const double gtn = gt.norm();
+    // A start that is already stationary may be a saddle (symmetric configurations, e.g. the
+    // centre line in the mid-plane of a disc): only then is the curvature checked below.
+    const bool stationary = gtn <= std::max(tol * size, floor);
+    if (stationary && it > 0) {
+      r.converged = true;
+      return r;
+    }
+    Vec3 t1, t2;
+    tangent_basis(r.n, t1, t2);
+    const Vec3 ua = ev.man / ev.ha, ub = ev.mbn / ev.hb;
+    const Vec3 at1 = a.inverse_form * t1, at2 = a.inverse_form * t2;
+    const Vec3 bt1 = b.inverse_form * t1, bt2 = b.inverse_form * t2;
+    const double ua1 = ua.dot(t1), ua2 = ua.dot(t2), ub1 = ub.dot(t1), ub2 = ub.dot(t2);
+    double h11 = (t1.dot(at1) - ua1 * ua1) / ev.ha + (t1.dot(bt1) - ub1 * ub1) / ev.hb - gn;
+    double h22 = (t2.dot(at2) - ua2 * ua2) / ev.ha + (t2.dot(bt2) - ub2 * ub2) / ev.hb - gn;
+    const double h12 = (t1.dot(at2) - ua1 * ua2) / ev.ha + (t1.dot(bt2) - ub1 * ub2) / ev.hb;
+    const double g1 = gt.dot(t1), g2 = gt.dot(t2);
+    // smallest eigenvalue of the 2x2; shift to keep the model convex
+    const double tr = 0.5 * (h11 + h22);
+    const double disc = std::sqrt(0.25 * (h11 - h22) * (h11 - h22) + h12 * h12);
+    const double lmin = tr - disc;
+    const double hscale = std::max(std::fabs(tr) + disc, size);
+    if (stationary) {
+      if (!(lmin < -1e-6 * hscale)) {
+        r.converged = true;
+        return r;
+      }
+    }
+    ++r.iterations;
+    if (lmin < 1e-3 * hscale) {
+      const double shift = 1e-3 * hscale - lmin;
+      h11 += shift;
+      h22 += shift;
+    }
+    const double det = h11 * h22 - h12 * h12;
+    double v1 = -(h22 * g1 - h12 * g2) / det;
+    double v2 = -(h11 * g2 - h12 * g1) / det;
+    double step = std::sqrt(v1 * v1 + v2 * v2);
+    if (stationary) {    // saddle: leave along the negative-curvature eigenvector
+      const double h11u = h11 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
+      const double h22u = h22 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
+      double e1 = h12, e2 = lmin - h11u;
+      if (e1 * e1 + e2 * e2 < (lmin - h22u) * (lmin - h22u) + h12 * h12) {
+        e1 = lmin - h22u;
+        e2 = h12;
+      }
+      const double en = std::sqrt(e1 * e1 + e2 * e2);
+      if (!(en > 0.0)) {
+        e1 = 1.0;
+        e2 = 0.0;
+      } else {
+        e1 /= en;
+        e2 /= en;
+      }
+      if (e1 * g1 + e2 * g2 > 0.0) {
+        e1 = -e1;
+        e2 = -e2;
+      }
+      // any decrease of d will do
+      const double d0 = ev.d;
+      Vec3 trial_n;
+      GapEval trial;
+      if (!backtrack(
+              a, b, dc, r.n, t1, t2, 0.25 * e1, 0.25 * e2, 30,
+              [d0](double d) {
+                return d < d0;
+              },
+              trial_n, trial)) {
+        r.converged = true;    // flat to round-off: accept the stationary point
+        return r;
+      }
+      r.n = trial_n;
+      r.ev = trial;
+      continue;
+    }
+    if (!std::isfinite(step)) {    // should not happen; steepest descent fallback
+      v1 = -g1 / hscale;
+      v2 = -g2 / hscale;
+      step = std::sqrt(v1 * v1 + v2 * v2);
+    }
+    const double max_step = 0.5;    // trust radius in radians
+    if (step > max_step) {
+      v1 *= max_step / step;
+      v2 *= max_step / step;
+      step = max_step;
+    }
+    // Near the minimiser the pure Newton step is safe and the line search would only
+    // see round-off; far away, Armijo backtracking guarantees descent.
+    const bool line_search = step > 1e-4;
+    const double sufficient = ev.d + 1e-4 * (g1 * v1 + g2 * v2);    // slope < 0
+    Vec3 nn;
+    GapEval en;
+    if (!backtrack(
+            a, b, dc, r.n, t1, t2, v1, v2, 40,
+            [line_search, sufficient](double d) {
+              return !line_search || d <= sufficient;
+            },
+            nn, en))
+      return r;    // no descent possible: round-off bound, not converged
+    r.n = nn;
+    r.ev = en;
+    if (step < 1e-3 * tol) {    // step below resolution: converged to round-off
+      r.converged = true;
+      return r;
+    }
+  }
+  // final convergence check after the last step
+  const Vec3 gt = r.ev.grad - r.ev.grad.dot(r.n) * r.n;
+  const double floor = 32.0 * kEps * (dc.norm() + r.ev.ha + r.ev.hb);
+  r.converged = gt.norm() <= std::max(tol * size, floor);
+  return r;
+}
+
+ColdStart cold_start(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc)
+{
+  ColdStart s{Vec3::Zero(), 0, false, Vec3::Zero(), Vec3::Zero()};
+  s.iterations = 0;
+  s.perram = false;
+  const double dn = dc.norm();
+  const double size = std::min(min_axis(a), min_axis(b));
+  const Vec3 line = dn > 1e-12 * size ? Vec3(dc / dn) : thin_axis(a);
+  s.n = line;
+  if ((a.sphere && b.sphere) || dn <= 1e-12 * size) return s;
+  auto gapf = [&](const Vec3 &n) {
+    return support(a.inverse_form, n) + support(b.inverse_form, n) - n.dot(dc);
+  };
+  // Several cheap candidates; keep the one with the smallest gap function. A start with
+  // d < 0 lies in the (spherically convex) sublevel set {d < 0} of a disjoint pair, so the
+  // descent iteration then cannot end in a spurious positive local minimum. Besides the
+  // centre line: the surface normals where the centre line crosses each surface (good when
+  // one body is much larger), and the Perram-type vector and the normals at its points.
+  double best = gapf(line);
+  auto consider = [&](Vec3 n) {
+    const double nn = n.norm();
+    if (!(nn > 0.0) || !std::isfinite(nn)) return;
+    n /= nn;
+    const double dv = gapf(n);
+    if (dv < best) {
+      best = dv;
+      s.n = n;
+    }
+  };
+  consider(a.form * dc);
+  consider(b.form * dc);
+  if (a.sphere || b.sphere) return s;
+  const int iters = 4;
+  s.xb = lagrange_point(b, a, iters);    // on A's surface, minimising f_B
+  s.xa = lagrange_point(a, b, iters);    // on B's surface, minimising f_A
+  s.iterations = 2 * iters;
+  Vec3 xi = s.xb - s.xa;    // overlapping pairs: points from A's side to B's side
+  const double xn = xi.norm();
+  if (!(xn > 1e-12 * size) || !finite3(xi)) return s;
+  consider(xi);
+  consider(-xi);
+  consider(a.form * (s.xb - a.center));       // A's outer normal at its Perram point
+  consider(-(b.form * (s.xa - b.center)));    // B's inner normal at its Perram point
+  s.perram = true;
+  return s;
+}
+
+}    // namespace EllipsoidDep

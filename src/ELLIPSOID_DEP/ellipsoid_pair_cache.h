@@ -1,0 +1,134 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ELLIPSOID_DEP kernel: the per-pair history of a pair of bodies A, B, as named slots over
+   the doubles an engine keeps per neighbour pair (LAMMPS fix NEIGH_HISTORY, LIGGGHTS contact
+   history). The only place that knows the layout.
+
+   Layout (PairCache::size(tangential) doubles)
+     STATE          0     0 nothing, +-1 separating plane, +-2 contact normal (read with fabs)
+     NORMAL         1-3   unit normal from A to B: the plane normal or the last contact normal
+     PLANE_U        4     u: the plane passes through c_A + (1/2 + u)(c_B - c_A)
+     TANGENTIAL     5-7   tangential displacement (only for force laws with a history)
+   evaluate_pair reads and writes slots 0-4 (PIPELINE_SIZE); the force law owns 5-7.
+
+   The i/j swap rule: every slot changes sign when A and B are swapped (the state by
+   convention, n -> -n, u -> -u, s -> -s), so the swapped pair's history is the negated copy
+   (swapped()). That is the default transfer of LAMMPS's fix NEIGH_HISTORY and LIGGGHTS's
+   "newtonflag 1" history values, so neither engine needs a custom transfer. Storing the plane
+   relative to the two centres (u, not an absolute offset) also makes it independent of
+   periodic images and of which rank holds which copy.
+------------------------------------------------------------------------- */
+
+#ifndef ELLIPSOID_DEP_ELLIPSOID_PAIR_CACHE_H
+#define ELLIPSOID_DEP_ELLIPSOID_PAIR_CACHE_H
+
+#include "ellipsoid_wang.h"
+
+namespace EllipsoidDep {
+
+class PairCache {
+ public:
+  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, TANGENTIAL = 5;
+  static constexpr int PIPELINE_SIZE = 5;      // slots evaluate_pair uses
+  static constexpr int TANGENTIAL_SIZE = 3;    // slots of the tangential displacement
+  static constexpr int size(bool tangential_history)
+  {
+    return PIPELINE_SIZE + (tangential_history ? TANGENTIAL_SIZE : 0);
+  }
+
+  // the state slot holds +-code (the sign follows the pair order)
+  enum class State : int { Empty = 0, Plane = 1, Contact = 2 };
+
+  explicit PairCache(double *values) : v(values) {}
+
+  // The history of the pair seen with A and B swapped (n doubles).
+  static void swapped(const double *values, double *out, int n)
+  {
+    for (int k = 0; k < n; ++k) out[k] = -values[k];
+  }
+
+  State state() const
+  {
+    const int code = static_cast<int>(std::fabs(v[STATE]) + 0.5);
+    if (code == static_cast<int>(State::Plane)) return State::Plane;
+    if (code == static_cast<int>(State::Contact)) return State::Contact;
+    return State::Empty;
+  }
+  // true while the cache keeps a plane or a normal (engines keep such pairs' history)
+  bool in_use() const { return v[STATE] != 0.0; }
+  Vec3 normal() const { return Vec3(v[NORMAL], v[NORMAL + 1], v[NORMAL + 2]); }
+  // the cached normal when there is one and it is plausibly unit (false otherwise)
+  bool usable_normal(Vec3 &n) const
+  {
+    n = normal();
+    return state() != State::Empty && finite3(n) && n.squaredNorm() > 0.25;
+  }
+  // the cached plane, for the current centre c_A and dc = c_B - c_A
+  SeparatingPlane plane(const Vec3 &ca, const Vec3 &dc) const
+  {
+    SeparatingPlane pl;
+    pl.normal = normal();
+    pl.offset = pl.normal.dot(ca + (0.5 + v[PLANE_U]) * dc);
+    return pl;
+  }
+
+  // the plane {n.x = offset} as (n, u); a plane that does not cross the centre line (n.dc <= 0)
+  // cannot be stored and clears the cache
+  void store_plane(const Vec3 &n, double offset, const Vec3 &ca, const Vec3 &dc)
+  {
+    const double nd = n.dot(dc);
+    if (!(nd > 0.0)) {
+      clear();
+      return;
+    }
+    set(State::Plane, n, (offset - n.dot(ca)) / nd - 0.5);
+  }
+  void store_contact(const Vec3 &n) { set(State::Contact, n, 0.0); }
+  // forget the plane or normal (the tangential slots are the force law's)
+  void clear()
+  {
+    for (int k = 0; k < PIPELINE_SIZE; ++k) v[k] = 0.0;
+  }
+
+  double *tangential() { return v + TANGENTIAL; }
+  const double *tangential() const { return v + TANGENTIAL; }
+  void clear_tangential()
+  {
+    for (int k = 0; k < TANGENTIAL_SIZE; ++k) v[TANGENTIAL + k] = 0.0;
+  }
+
+ private:
+  double *v;
+
+  void set(State state, const Vec3 &n, double u)
+  {
+    v[STATE] = static_cast<double>(static_cast<int>(state));
+    v[NORMAL] = n[0];
+    v[NORMAL + 1] = n[1];
+    v[NORMAL + 2] = n[2];
+    v[PLANE_U] = u;
+  }
+};
+
+// The tangential displacement handed to a force law, which advances it in place: the stored
+// doubles, or a scratch copy for a look that must not change them (setup forces, single()).
+class TangentialHistory {
+ public:
+  TangentialHistory(double *stored, bool advance) : p(stored)
+  {
+    if (stored && !advance) {
+      for (int k = 0; k < PairCache::TANGENTIAL_SIZE; ++k) scratch[k] = stored[k];
+      p = scratch;
+    }
+  }
+  TangentialHistory(const TangentialHistory &) = delete;
+  TangentialHistory &operator=(const TangentialHistory &) = delete;
+  double *get() const { return p; }
+
+ private:
+  double scratch[PairCache::TANGENTIAL_SIZE];
+  double *p;
+};
+
+}    // namespace EllipsoidDep
+
+#endif

@@ -1,0 +1,101 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP kernel: the per-pair pipeline (see ellipsoid_pipeline.h).
+------------------------------------------------------------------------- */
+
+#include "ellipsoid_pipeline.h"
+
+#include "ellipsoid_pair_cache.h"
+#include "ellipsoid_wang.h"
+
+namespace EllipsoidDep {
+
+void PipelineCounters::add(const PipelineCounters &o)
+{
+  for (const CounterField &c : PIPELINE_COUNTERS) this->*c.member += o.*c.member;
+}
+
+ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
+                              const PipelineSettings &settings, double *cache,
+                              PipelineCounters &counters)
+{
+  ++counters.pairs;
+  PairCache history(cache);
+  ContactGeometry g;
+  const Vec3 dc = b.center - a.center;
+  const double dist = dc.norm();
+  const double reach = a.bounding_radius + b.bounding_radius;
+  // NaN compares false: non-finite input falls through to the validity check
+  if (dist > reach && std::isfinite(dist) && std::isfinite(reach)) {
+    ++counters.bounding_rejects;
+    history.clear();
+    g.status = Status::Separated;
+    g.normal = dc / dist;
+    g.overlap = reach - dist;    // minus a lower bound of the distance
+    return g;
+  }
+  const PairCache::State state = history.state();
+  Vec3 cached_n;
+  const bool have_n = history.usable_normal(cached_n);
+  if (state == PairCache::State::Plane && have_n && settings.use_planes) {
+    const SeparatingPlane pl = history.plane(a.center, dc);
+    // any NaN makes the test false, so invalid input cannot hit here
+    if (plane_separates(pl, a, b)) {
+      ++counters.plane_hits;
+      g.status = Status::Separated;
+      g.normal = cached_n;
+      return g;
+    }
+  }
+  if (!valid(a) || !valid(b) || !std::isfinite(dist)) {
+    ++counters.degenerate;
+    history.clear();
+    g.status = Status::Degenerate;
+    return g;
+  }
+  // A pair in contact at the previous evaluation goes straight to the iteration, warm-started
+  // from its own last normal: the sign of min d(n) decides separation exactly, and the
+  // continuing contact keeps its basin. The Wang test screens pairs that newly come close.
+  const bool continuing_contact = state == PairCache::State::Contact && have_n;
+  if (continuing_contact) ++counters.continued;
+  if (settings.use_wang && !continuing_contact) {
+    ++counters.wang_calls;
+    const Status ws = wang_classify(a, b, settings.contact);
+    if (ws == Status::Degenerate) {
+      ++counters.degenerate;
+      history.clear();
+      g.status = Status::Degenerate;
+      return g;
+    }
+    if (ws == Status::Separated) {
+      SeparatingPlane pl;
+      if (build_separating_plane(a, b, pl, have_n ? &cached_n : nullptr)) {
+        ++counters.wang_separated;
+        history.store_plane(pl.normal, pl.offset, a.center, dc);
+        g.status = Status::Separated;
+        g.normal = pl.normal;
+        return g;
+      }
+      // no plane to round-off: fall through to the exact iteration
+    }
+  }
+  g = ellipsoid_contact(a, b, settings.contact, have_n ? &cached_n : nullptr);
+  counters.iterations += g.iterations;
+  if (g.corrected) ++counters.corrections;
+  if (g.status == Status::Degenerate) {
+    ++counters.degenerate;
+    history.clear();
+    return g;
+  }
+  if (g.overlap <= 0.0) {
+    // a disjoint pair's minimiser gives a separating plane through the gap midpoint
+    history.store_plane(g.normal, g.normal.dot(g.point), a.center, dc);
+    g.status = Status::Separated;
+    return g;
+  }
+  ++counters.contacts;
+  if (g.status == Status::NotConverged) ++counters.not_converged;
+  history.store_contact(g.normal);
+  return g;
+}
+
+}    // namespace EllipsoidDep

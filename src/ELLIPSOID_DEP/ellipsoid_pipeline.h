@@ -1,0 +1,86 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ELLIPSOID_DEP kernel: the per-pair pipeline of the paper (Fig. 2) for callers that keep a
+   small per-pair cache between steps (PairCache): bounding spheres -> cached separating plane
+   -> Wang test (disjoint: build and cache a plane) -> contact iteration warm-started from the
+   cached normal -> normal correction. Its settings and the counters of what it did.
+
+   Conventions
+   - A is the first body, B the second; the cache belongs to the ordered pair (A, B) (see
+     ellipsoid_pair_cache.h for the layout and the swap rule).
+   - Every evaluation ends in exactly one of: bounding reject, plane hit, Wang test (or the
+     iteration directly when use_wang is off), continued contact.
+
+   Degenerate cases
+   - Invalid bodies or a non-finite centre distance: Degenerate, counted, cache cleared.
+     Non-finite input never hits the bounding or the plane shortcut (NaN compares false).
+------------------------------------------------------------------------- */
+
+#ifndef ELLIPSOID_DEP_ELLIPSOID_PIPELINE_H
+#define ELLIPSOID_DEP_ELLIPSOID_PIPELINE_H
+
+#include "ellipsoid_contact.h"
+
+namespace EllipsoidDep {
+
+struct PipelineSettings {
+  ContactSettings contact;
+  bool use_planes = true;    // cache separating planes of disjoint pairs
+  bool use_wang = true;      // false: go straight to the contact iteration
+};
+
+struct PipelineCounters {
+  long long pairs = 0;               // pairs evaluated
+  long long plane_hits = 0;          // cached plane still separates
+  long long wang_calls = 0;          // Wang tests
+  long long contacts = 0;            // overlapping results
+  long long iterations = 0;          // summed over contact evaluations
+  long long corrections = 0;         // normal-correcting step applied
+  long long not_converged = 0;       // iteration cap reached (contact still used, flagged)
+  long long bounding_rejects = 0;    // bounding spheres disjoint
+  long long degenerate = 0;          // input that could not be handled
+  long long continued = 0;           // contacts of the previous step re-evaluated without Wang
+  long long wang_separated = 0;      // Wang said disjoint and a plane was built
+  void add(const PipelineCounters &o);
+};
+
+// The counters by name, in their one order: every consumer (summation, the LAMMPS pair's
+// vector, its end-of-run report, the LIGGGHTS bridge) iterates over this table.
+struct CounterField {
+  const char *name;     // machine-readable key
+  const char *label;    // human-readable, follows the value in reports
+  long long PipelineCounters::*member;
+};
+inline constexpr CounterField PIPELINE_COUNTERS[] = {
+    {"pairs", "pairs tested", &PipelineCounters::pairs},
+    {"plane_hits", "plane hits", &PipelineCounters::plane_hits},
+    {"wang_calls", "Wang tests", &PipelineCounters::wang_calls},
+    {"contacts", "contacts", &PipelineCounters::contacts},
+    {"iterations", "iterations", &PipelineCounters::iterations},
+    {"corrections", "corrections", &PipelineCounters::corrections},
+    {"not_converged", "not converged", &PipelineCounters::not_converged},
+    {"bounding_rejects", "bounding rejects", &PipelineCounters::bounding_rejects},
+    {"degenerate", "degenerate", &PipelineCounters::degenerate},
+    {"continued", "continued contacts", &PipelineCounters::continued},
+    {"wang_separated", "Wang separations", &PipelineCounters::wang_separated},
+};
+inline constexpr int NUM_PIPELINE_COUNTERS =
+    static_cast<int>(sizeof(PIPELINE_COUNTERS) / sizeof(PIPELINE_COUNTERS[0]));
+
+// Position of a counter in PIPELINE_COUNTERS, and so in every array in that order.
+constexpr int counter_index(long long PipelineCounters::*member)
+{
+  for (int k = 0; k < NUM_PIPELINE_COUNTERS; ++k)
+    if (PIPELINE_COUNTERS[k].member == member) return k;
+  return -1;
+}
+
+// Evaluates one pair; updates the cache (PairCache::PIPELINE_SIZE doubles) and the counters.
+// Returns Overlapping (or NotConverged, still with usable geometry) when there is a contact,
+// else Separated (or Degenerate).
+ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
+                              const PipelineSettings &settings, double *cache,
+                              PipelineCounters &counters);
+
+}    // namespace EllipsoidDep
+
+#endif

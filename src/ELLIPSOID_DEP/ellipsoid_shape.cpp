@@ -1,0 +1,90 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP kernel: construction, volume and slab volume of an ellipsoid
+   (see ellipsoid_shape.h for the conventions).
+------------------------------------------------------------------------- */
+
+#include "ellipsoid_shape.h"
+
+#include <limits>
+
+namespace EllipsoidDep {
+
+namespace {
+  constexpr double kPi = 3.14159265358979323846;
+
+  inline Mat3 rotation_of(const double quat[4])
+  {
+    Eigen::Quaterniond q(quat[0], quat[1], quat[2], quat[3]);
+    const double nq = q.norm();
+    Mat3 r = Mat3::Identity();
+    if (nq > 0.0 && std::isfinite(nq)) {
+      q.coeffs() /= nq;
+      r = q.toRotationMatrix();
+    } else {
+      r.setConstant(std::numeric_limits<double>::quiet_NaN());    // flagged Degenerate later
+    }
+    return r;
+  }
+}    // namespace
+
+Mat4 Ellipsoid::homogeneous() const
+{
+  Mat4 h;
+  const Vec3 qc = form * center;
+  h.topLeftCorner<3, 3>() = form;
+  h.topRightCorner<3, 1>() = -qc;
+  h.bottomLeftCorner<1, 3>() = -qc.transpose();
+  h(3, 3) = center.dot(qc) - 1.0;
+  return h;
+}
+
+double Ellipsoid::volume() const
+{
+  return 4.0 / 3.0 * kPi * semi_axes[0] * semi_axes[1] * semi_axes[2];
+}
+
+Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &semi_axes)
+{
+  Ellipsoid e;
+  e.center = center;
+  e.rotation = rotation;
+  e.semi_axes = semi_axes;
+  const Vec3 inv2 = semi_axes.cwiseProduct(semi_axes).cwiseInverse();
+  const Vec3 sq = semi_axes.cwiseProduct(semi_axes);
+  e.form = rotation * inv2.asDiagonal() * rotation.transpose();
+  e.inverse_form = rotation * sq.asDiagonal() * rotation.transpose();
+  // exact symmetry so that both triangles agree bit for bit
+  e.form = 0.5 * (e.form + e.form.transpose()).eval();
+  e.inverse_form = 0.5 * (e.inverse_form + e.inverse_form.transpose()).eval();
+  e.bounding_radius = bounding_radius_of(semi_axes);
+  const double lo = semi_axes.minCoeff();
+  e.sphere = (e.bounding_radius - lo) <= 1e-14 * e.bounding_radius;
+  e.finite = finite3(center) && finite3(semi_axes) && lo > 0.0 && e.form.allFinite() &&
+      e.inverse_form.allFinite();
+  return e;
+}
+
+Mat3 quaternion_rotation(const double quat[4])
+{
+  return rotation_of(quat);
+}
+
+Ellipsoid make_ellipsoid(const Vec3 &center, const double quat[4], const Vec3 &semi_axes)
+{
+  const Mat3 r = rotation_of(quat);
+  return make_ellipsoid(center, r, semi_axes);
+}
+
+double ellipsoid_slab_volume(const Ellipsoid &e, double zlo, double zhi)
+{
+  if (!valid(e) || !(zhi > zlo)) return 0.0;
+  // z half-extent h = sqrt(M_zz); section area(z) = (3V/4h)(1 - ((z-cz)/h)^2)
+  const double h = std::sqrt(e.inverse_form(2, 2));
+  const double t1 = std::clamp((zlo - e.center[2]) / h, -1.0, 1.0);
+  const double t2 = std::clamp((zhi - e.center[2]) / h, -1.0, 1.0);
+  if (!(t2 > t1)) return 0.0;
+  const double integral = (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0;    // in [0, 4/3]
+  return 0.75 * e.volume() * integral;
+}
+
+}    // namespace EllipsoidDep

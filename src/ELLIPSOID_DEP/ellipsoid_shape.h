@@ -1,0 +1,109 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ELLIPSOID_DEP kernel: the ellipsoid itself.
+
+   Engine independent: C++17 + Eigen only. No LAMMPS header, no MPI, no I/O, no exceptions.
+
+   Conventions
+   - An ellipsoid is {x : (x-c)^T Q (x-c) <= 1}, Q = R diag(1/a^2,1/b^2,1/c^2) R^T,
+     R the body-to-box rotation (columns = body axes), semi-axes in any order.
+   - M = Q^-1 = R diag(a^2,b^2,c^2) R^T gives the support function
+     h(n) = n.c + sqrt(n^T M n) and the support point s(n) = c + M n / sqrt(n^T M n).
+   - Quaternions are (w, x, y, z), body -> box; make_ellipsoid normalises them.
+
+   Degenerate cases
+   - A zero, negative or non-finite semi-axis, a non-finite centre or a quaternion of zero or
+     non-finite norm gives finite = false; every query then answers Degenerate (or 0 for the
+     volumes) instead of computing with it. valid() re-checks the centre, which callers move
+     (periodic images) after construction.
+   - sphere is set when the semi-axes agree within 1e-14 relative: the queries take their
+     closed-form sphere paths.
+------------------------------------------------------------------------- */
+
+#ifndef ELLIPSOID_DEP_ELLIPSOID_SHAPE_H
+#define ELLIPSOID_DEP_ELLIPSOID_SHAPE_H
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace EllipsoidDep {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Mat4 = Eigen::Matrix4d;
+
+struct Ellipsoid {
+  Vec3 center;
+  Mat3 rotation;             // body -> box; columns are the body axes in box coordinates
+  Vec3 semi_axes;            // along the body axes, any order, all > 0
+  Mat3 form;                 // Q = R diag(1/a^2) R^T  (the paper's A)
+  Mat3 inverse_form;         // M = R diag(a^2) R^T  (support function)
+  double bounding_radius;    // largest semi-axis
+  bool sphere;               // all semi-axes equal to round-off: closed-form path
+  bool finite = false;       // every entry finite and semi-axes > 0 (checked once, here)
+
+  // the paper's 4x4 homogeneous matrix: X^T H X = 0 on the surface, X = (x,1)
+  Mat4 homogeneous() const;
+  double volume() const;
+};
+
+// Rotation body -> box of a quaternion (w, x, y, z) of any non-zero length (normalised
+// here); all NaN when its norm is zero or not finite.
+Mat3 quaternion_rotation(const double quat[4]);
+
+// quaternion (w, x, y, z), unit; semi-axes (a, b, c) along body x, y, z
+Ellipsoid make_ellipsoid(const Vec3 &center, const double quat[4], const Vec3 &semi_axes);
+Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &semi_axes);
+
+// Radius of the bounding sphere about the centre: the largest semi-axis.
+inline double bounding_radius_of(const Vec3 &semi_axes)
+{
+  return semi_axes.maxCoeff();
+}
+
+inline bool finite3(const Vec3 &v)
+{
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+// make_ellipsoid decides validity once per body; a centre moved afterwards (periodic images)
+// is checked again because it is cheap
+inline bool valid(const Ellipsoid &e)
+{
+  return e.finite && finite3(e.center);
+}
+
+// Support half-width sqrt(n^T M n) (n need not be unit: degree-1 homogeneous).
+inline double support(const Mat3 &m, const Vec3 &n)
+{
+  return std::sqrt(std::max(n.dot(m * n), 0.0));
+}
+
+// Gaussian-curvature radius sqrt(R1 R2) of the surface where its outer unit normal is n:
+// abc / (n^T M n), from the Gaussian curvature K = (n^T M n)^2 / (abc)^2.
+inline double gaussian_radius(const Ellipsoid &e, const Vec3 &unit_normal)
+{
+  const double nmn = unit_normal.dot(e.inverse_form * unit_normal);
+  return e.semi_axes[0] * e.semi_axes[1] * e.semi_axes[2] / nmn;
+}
+
+// The force laws' R* = R_A R_B / (R_A + R_B) of two surface radii.
+inline double effective_radius(double ra, double rb)
+{
+  return ra * rb / (ra + rb);
+}
+
+// R* of a contact with unit normal n from A to B: Gaussian radii of A at n and of B at -n.
+inline double effective_radius(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n)
+{
+  return effective_radius(gaussian_radius(a, n), gaussian_radius(b, -n));
+}
+
+// Volume of the part of an ellipsoid between the planes z = zlo and z = zhi (closed form);
+// 0 for an invalid ellipsoid or zhi <= zlo.
+double ellipsoid_slab_volume(const Ellipsoid &e, double zlo, double zhi);
+
+}    // namespace EllipsoidDep
+
+#endif

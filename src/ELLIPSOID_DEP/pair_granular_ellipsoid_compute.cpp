@@ -1,0 +1,182 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP: pair_style granular/ellipsoid, the force evaluation (see
+   doc/pair_granular_ellipsoid.rst and doc/architecture.md "One force evaluation"): the
+   per-atom states, one pair through the kernel's pipeline and the force law, the neighbour
+   loop, and single() for compute pair/local.
+------------------------------------------------------------------------- */
+
+#include "pair_granular_ellipsoid.h"
+
+#include "atom.h"
+#include "fix_neigh_history.h"
+#include "force.h"
+#include "neigh_list.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace EllipsoidDep;
+
+void PairGranularEllipsoid::update_states()
+{
+  const EllipsoidAtoms atoms(atom);
+  const int nall = atom->nlocal + atom->nghost;
+  states.resize(nall);
+  for (int i = 0; i < nall; i++) states[i] = atoms.state(i);
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
+                                       ContactGeometry &geometry, ContactForce &result)
+{
+  geometry = evaluate_pair(states[i].shape, states[j].shape, pipeline, history, counters);
+  if (geometry.status != Status::Overlapping && geometry.status != Status::NotConverged)
+    return false;
+
+  const ForceLaw &force_law = laws[law];
+  const ContactMotion motion =
+      contact_motion(states[i], states[j], geometry.point, atom->mask[i] & freeze_group_bit,
+                     atom->mask[j] & freeze_group_bit);
+  // setup and single() look at the stored history without advancing it (dt = 0, on a copy),
+  // as pair granular does, so a restart reproduces the forces it was written with
+  const TangentialHistory tangential(
+      force_law.history_size() > 0 ? PairCache(history).tangential() : nullptr, history_update);
+  result = force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential.get());
+  return true;
+}
+
+/* ----------------------------------------------------------------------
+   the history doubles of neighbour jj of i (PairCache layout)
+------------------------------------------------------------------------- */
+
+double *PairGranularEllipsoid::pair_history(int i, int jj) const
+{
+  return &fix_history->firstvalue[i][size_history * jj];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  history_update = update->setupflag == 0;
+  update_states();
+  const bool record = contacts.recording();
+  if (record) contacts.start(update->ntimestep);
+
+  double **x = atom->x;
+  double **f = atom->f;
+  double **torque = atom->torque;
+  int *type = atom->type;
+  const int nlocal = atom->nlocal;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  int **firsttouch = fix_history->firstflag;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    int *jlist = firstneigh[i];
+    int *touch = firsttouch[i];
+    const int jnum = numneigh[i];
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      double *history = pair_history(i, jj);
+      const int law = law_index[type[i]][type[j]];
+
+      ContactGeometry geometry;
+      ContactForce result;
+      const bool contact = pair_force(i, j, law, history, geometry, result);
+      // keep the history of this pair while it caches a plane or a contact normal
+      PairCache cache(history);
+      touch[jj] = cache.in_use() ? 1 : 0;
+      if (!contact) {
+        if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
+        continue;
+      }
+
+      const double *fi = result.force_i.data();
+      f[i][0] += fi[0];
+      f[i][1] += fi[1];
+      f[i][2] += fi[2];
+      torque[i][0] += result.torque_i[0];
+      torque[i][1] += result.torque_i[1];
+      torque[i][2] += result.torque_i[2];
+      if (force->newton_pair || j < nlocal) {
+        f[j][0] -= fi[0];
+        f[j][1] -= fi[1];
+        f[j][2] -= fi[2];
+        torque[j][0] += result.torque_j[0];
+        torque[j][1] += result.torque_j[1];
+        torque[j][2] += result.torque_j[2];
+      }
+      if (evflag)
+        ev_tally_xyz(i, j, nlocal, force->newton_pair, 0.0, 0.0, fi[0], fi[1], fi[2],
+                     x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]);
+      if (record) {
+        ContactList::Contact c;
+        c.i = i;
+        c.j = j;
+        c.overlap = geometry.overlap;
+        for (int d = 0; d < 3; d++) {
+          c.normal[d] = geometry.normal[d];
+          c.point[d] = geometry.point[d];
+          c.force[d] = fi[d];
+        }
+        contacts.add(c);
+      }
+    }
+  }
+  local_counters(pvector);
+}
+
+/* ----------------------------------------------------------------------
+   one pair for compute pair/local: extra values
+   overlap, nx, ny, nz (i to j), cx, cy, cz (contact point), fx, fy, fz (force on i)
+------------------------------------------------------------------------- */
+
+double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double /*rsq*/,
+                                     double /*factor_coul*/, double /*factor_lj*/, double &fforce)
+{
+  for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
+  fforce = 0.0;
+  if (static_cast<int>(states.size()) < atom->nlocal + atom->nghost) update_states();
+
+  // the stored history of this pair, if the neighbour list still holds it
+  std::vector<double> history(size_history, 0.0);
+  if (fix_history && fix_history->firstvalue) {
+    int *jlist = list->firstneigh[i];
+    const int jnum = list->numneigh[i];
+    for (int jj = 0; jj < jnum; jj++)
+      if ((jlist[jj] & NEIGHMASK) == j) {
+        std::memcpy(history.data(), pair_history(i, jj), size_history * sizeof(double));
+        break;
+      }
+  }
+  const bool saved = history_update;
+  history_update = false;
+  const PipelineCounters before = counters;
+  ContactGeometry geometry;
+  ContactForce result;
+  const bool contact = pair_force(i, j, law_index[itype][jtype], history.data(), geometry, result);
+  counters = before;    // single() is a look, not an evaluation
+  history_update = saved;
+  if (!contact) return 0.0;
+
+  svector[0] = geometry.overlap;
+  for (int d = 0; d < 3; d++) {
+    svector[1 + d] = geometry.normal[d];
+    svector[4 + d] = geometry.point[d];
+    svector[7 + d] = result.force_i[d];
+  }
+  // fforce * (x_i - x_j) is the force on i in LAMMPS's convention; use its normal part
+  const Vec3 dx = states[i].shape.center - states[j].shape.center;
+  const double r2 = dx.squaredNorm();
+  fforce = r2 > 0.0 ? result.force_i.dot(dx) / r2 : 0.0;
+  return 0.0;
+}
