@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ELLIPSOID_DEP benchmarks (issue 8): peers side by side, speed-accuracy trade, scaling.
+"""ELLIPSOID_DEP benchmarks: peers side by side, speed-accuracy trade, scaling.
 
   ./ellipsoid-dep bench            quick (N ~ 1000, M = 500, 3 repeats; a few minutes)
   ./ellipsoid-dep bench --full     N ~ 4000 side by side, scaling 1e3..1e5

@@ -1,13 +1,14 @@
-"""Helpers for test_pour.py and test_wall.py (fix pour/ellipsoid, fix wall/gran/ellipsoid).
+"""Running a scene with a log file and reading its state back at full precision: a LAMMPS
+instance that logs to a file in the test's folder, the log, an id-sorted per-atom snapshot,
+and the check that a command is refused with a given message.
 
 LAMMPS is driven through its Python module; the plugin is loaded from LAMMPS_PLUGIN_PATH.
-The geometric checks here are independent of the plugin's kernel (numpy/scipy only).
 """
 
 import os
 
 import numpy as np
-from scipy import optimize
+import pytest
 
 
 def new_lammps(workdir, name="log"):
@@ -57,55 +58,15 @@ def snapshot(lmp, workdir, name="snap"):
     return out
 
 
-def rotation(q):
-    """Body-to-box rotation matrix (columns = body axes) of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-    ])
-
-
-def support_matrix(q, semi):
-    """M = R diag(a^2, b^2, c^2) R^T: the support function is h(n) = n.c + sqrt(n^T M n)."""
-    r = rotation(q)
-    return r @ np.diag(np.asarray(semi) ** 2) @ r.T
-
-
-def _gap(n, ma, mb, dc):
-    n = n / np.linalg.norm(n)
-    return np.sqrt(n @ ma @ n) + np.sqrt(n @ mb @ n) - n @ dc
-
-
-def separating_axis(ca, qa, sa, cb, qb, sb, starts=12, seed=0):
-    """Independent disjointness certificate by the separating axis theorem:
-    d(n) = h_A(n) + h_B(-n) - n.(c_B - c_A); the bodies are disjoint iff min_n d(n) < 0.
-    Returns (min d found, n). A negative value PROVES separation (n is a separating axis)."""
-    ma, mb = support_matrix(qa, sa), support_matrix(qb, sb)
-    dc = np.asarray(cb, float) - np.asarray(ca, float)
-    rng = np.random.default_rng(seed)
-    guesses = [dc / np.linalg.norm(dc)] + list(rng.normal(size=(starts, 3)))
-    best = (np.inf, None)
-    for g in guesses:
-        res = optimize.minimize(_gap, g, args=(ma, mb, dc), method="Nelder-Mead",
-                                options={"xatol": 1e-12, "fatol": 1e-14, "maxiter": 4000})
-        if res.fun < best[0]:
-            best = (res.fun, res.x / np.linalg.norm(res.x))
-        if best[0] < 0.0:
-            break
-    return best
-
-
-def minimum_image(d, box, periodic):
-    d = np.array(d, dtype=float)
-    for k in range(3):
-        if periodic[k]:
-            length = box[k, 1] - box[k, 0]
-            d[k] -= length * np.round(d[k] / length)
-    return d
-
-
-def lowest_z(q, semi, z):
-    """Height of the lowest point of an ellipsoid: z - sqrt(M_zz)."""
-    return z - np.sqrt(support_matrix(q, semi)[2, 2])
+def assert_refused(workdir, setup, commands, pattern):
+    """The setup commands run; one of `commands` (run in order after them) raises an error
+    whose message matches the regular expression `pattern`."""
+    lmp = new_lammps(workdir)
+    try:
+        for c in setup:
+            lmp.command(c)
+        with pytest.raises(Exception, match=pattern):
+            for c in commands:
+                lmp.command(c)
+    finally:
+        lmp.close()

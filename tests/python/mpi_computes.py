@@ -15,9 +15,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from lammps import lammps  # noqa: E402
-
-import test_computes as tc  # noqa: E402
+import mpi_helpers as mpi  # noqa: E402
+import placed_scenes as ps  # noqa: E402
 
 COMPUTES = """
 compute pk all packing/ellipsoid EDGE EDGE
@@ -39,44 +38,39 @@ ARRAYS = ["ch", "cs", "cz", "ol", "os", "cg"]
 
 
 def configurations():
-    box, parts, _ = tc.network()
+    box, parts, _ = ps.network()
     yield "network", box, parts
-    box, parts = tc.oblate_stacks(ncol=4, height=5)
+    box, parts = ps.oblate_stacks(ncol=4, height=5)
     # shift by half a column: one column straddles the rank split, one the periodic boundary
     L = box[0][1]
     parts = [(np.array([(x[0] + 1.3) % L, x[1], x[2]]), s, q) for x, s, q in parts]
     yield "oblate stacks", box, parts
-    box, parts, _ = tc.random_pairs(npairs=1000)
+    box, parts, _ = ps.random_pairs(npairs=1000)
     yield "random pairs", box, parts
 
 
 def results(lmp, box, parts, newton):
-    tc.build_system(box, parts, newton=newton, lmp=lmp, extra="processors * 1 1")
+    ps.build_system(box, parts, newton=newton, lmp=lmp, extra="processors * 1 1")
     lmp.commands_string(COMPUTES)
     lmp.command("run 0")
     out = {}
     for c in VECTORS:
-        out["v_" + c] = tc.vector(lmp, c)
+        out["v_" + c] = ps.vector(lmp, c)
     for c in ARRAYS:
-        out["a_" + c] = tc.array(lmp, c)
+        out["a_" + c] = ps.array(lmp, c)
     return out
 
 
 def main():
-    args = ["-log", "none", "-screen", "none", "-nocite"]
-    probe = lammps(cmdargs=args)
-    nprocs = probe.extract_setting("world_size")
-    probe.close()
+    nprocs = mpi.world_size()
     last = None
     failures = []
     for name, box, parts in configurations():
         for newton in ("off", "on"):
-            par = lammps(cmdargs=args)
+            par = mpi.parallel()
             r_par = results(par, box, parts, newton)
             par.close()
-            # -in is required with partitions; the library interface never reads it
-            ser = lammps(cmdargs=args + ["-partition", f"{nprocs}x1", "-plog", "none",
-                                         "-pscreen", "none", "-in", os.devnull])
+            ser = mpi.serial_per_rank(nprocs)
             r_ser = results(ser, box, parts, newton)
             ser.close()
             last = ser
@@ -87,14 +81,7 @@ def main():
             n_contacts = r_ser["v_ch"][8]
             if n_contacts <= 0:
                 failures.append(f"{name}: no contacts at all")
-    last.finalize()    # MPI_Finalize: mpirun then sees a clean exit
-    rank = int(os.environ.get("OMPI_COMM_WORLD_RANK", os.environ.get("PMI_RANK", "0")))
-    if failures:
-        for f in failures:
-            print(f"[rank {rank}] FAIL {f}", flush=True)
-        sys.exit(1)
-    if rank == 0:
-        print(f"mpi_computes: 1 rank == {nprocs} ranks for all computes", flush=True)
+    mpi.finish(last, failures, f"mpi_computes: 1 rank == {nprocs} ranks for all computes")
 
 
 if __name__ == "__main__":

@@ -14,9 +14,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from lammps import lammps  # noqa: E402
-
-import test_computes as tc  # noqa: E402
+import mpi_helpers as mpi  # noqa: E402
+import placed_scenes as ps  # noqa: E402
 
 COMPUTES = """
 compute p1 all packing/profile 0.13
@@ -29,37 +28,32 @@ ARRAYS = ["p1", "p2", "p3"]
 
 
 def configurations():
-    box, parts = tc.lattice(n=(4, 4, 4), seed=6)
+    box, parts = ps.lattice(n=(4, 4, 4), seed=6)
     # shift by half a cell in x: a column of particles straddles the periodic boundary
     parts = [(np.array([(x[0] + 0.5) % 4.0, x[1], x[2]]), s, q) for x, s, q in parts]
     yield "lattice", box, parts, "p p f"
-    box, parts, _ = tc.network()
+    box, parts, _ = ps.network()
     yield "network, periodic z", box, parts, "p p p"
 
 
 def results(lmp, box, parts, periodic, processors):
-    tc.build_system(box, parts, periodic=periodic, lmp=lmp, extra=f"processors {processors}")
+    ps.build_system(box, parts, periodic=periodic, lmp=lmp, extra=f"processors {processors}")
     lmp.commands_string(COMPUTES)
     lmp.command("run 0")
-    return {c: tc.array(lmp, c) for c in ARRAYS}
+    return {c: ps.array(lmp, c) for c in ARRAYS}
 
 
 def main():
-    args = ["-log", "none", "-screen", "none", "-nocite"]
-    probe = lammps(cmdargs=args)
-    nprocs = probe.extract_setting("world_size")
-    probe.close()
+    nprocs = mpi.world_size()
     failures = []
     last = None
     for name, box, parts, periodic in configurations():
-        # -in is required with partitions; the library interface never reads it
-        ser = lammps(cmdargs=args + ["-partition", f"{nprocs}x1", "-plog", "none",
-                                     "-pscreen", "none", "-in", os.devnull])
+        ser = mpi.serial_per_rank(nprocs)
         r_ser = results(ser, box, parts, periodic, "* * *")
         ser.close()
         last = ser
         for processors in ("* 1 1", "1 1 *"):
-            par = lammps(cmdargs=args)
+            par = mpi.parallel()
             r_par = results(par, box, parts, periodic, processors)
             par.close()
             for key in ARRAYS:
@@ -69,14 +63,7 @@ def main():
                                     f"parallel {b}")
         if not r_ser["p1"][:, 2].sum() > 0:
             failures.append(f"{name}: empty profile")
-    last.finalize()    # MPI_Finalize: mpirun then sees a clean exit
-    rank = int(os.environ.get("OMPI_COMM_WORLD_RANK", os.environ.get("PMI_RANK", "0")))
-    if failures:
-        for f in failures:
-            print(f"[rank {rank}] FAIL {f}", flush=True)
-        sys.exit(1)
-    if rank == 0:
-        print(f"mpi_packing_profile: 1 rank == {nprocs} ranks", flush=True)
+    mpi.finish(last, failures, f"mpi_packing_profile: 1 rank == {nprocs} ranks")
 
 
 if __name__ == "__main__":

@@ -1,8 +1,8 @@
-"""A pour on 2 MPI ranks vs 1 rank, and a restart file written on 2 ranks read on 1 (issue 9).
+"""A pour on 2 MPI ranks vs 1 rank, and a restart file written on 2 ranks read on 1.
 
 Run as `mpirun -np 2 python3 mpi_robustness.py`; exits non-zero on failure.
 
-The pour of test_restart_pour.py (triaxial ellipsoids, pair and wall with tangential
+The pour of scenes.mid_pour_commands (triaxial ellipsoids, pair and wall with tangential
 history and rolling, x and y periodic) runs once on all ranks (`processors 2 1 1`: the
 subdomain boundary at x = 4 and the periodic boundary at x = 0 both cut the pile, so
 contacts with history cross both) and once serially on every rank (`-partition Nx1`).
@@ -21,11 +21,8 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from lammps import lammps  # noqa: E402
-
-import test_restart_pour as trp  # noqa: E402
-
-ARGS = ["-log", "none", "-screen", "none", "-nocite"]
+import mpi_helpers as mpi  # noqa: E402
+import scenes  # noqa: E402
 
 
 def gather(lmp, name):
@@ -34,13 +31,13 @@ def gather(lmp, name):
 
 def pour(lmp, workfile):
     lmp.command("processors * 1 1")
-    lmp.commands_list(["pair_style granular/ellipsoid"] + trp.setup_commands())
-    lmp.command(f"run {trp.HALF}")
+    lmp.commands_list(["pair_style granular/ellipsoid"] + scenes.mid_pour_commands())
+    lmp.command(f"run {scenes.MID_POUR_HALF}")
     lmp.command("run 0")
     out = {"f": gather(lmp, "f"), "t": gather(lmp, "torque"), "x": gather(lmp, "x")}
     if workfile:
         lmp.command(f"write_restart {workfile}")
-    lmp.command(f"run {trp.REST}")
+    lmp.command(f"run {scenes.MID_POUR_REST}")
     out["natoms"] = lmp.get_natoms()
     out["inserted"] = lmp.extract_fix("p", 0, 0)
     out["pk"] = float(lmp.numpy.extract_compute("pk", 0, 1)[0])
@@ -49,10 +46,7 @@ def pour(lmp, workfile):
 
 
 def main():
-    probe = lammps(cmdargs=ARGS)
-    nprocs = probe.extract_setting("world_size")
-    rank = probe.extract_setting("world_rank")
-    probe.close()
+    nprocs = mpi.world_size()
     # the same file name on every rank: the job's namespace (Open MPI / PMIx) is shared
     job = os.environ.get("PMIX_NAMESPACE", os.environ.get("OMPI_MCA_ess_base_jobid",
                                                           str(os.getppid())))
@@ -61,26 +55,24 @@ def main():
     restart = os.path.join(work, "par.restart")
     failures = []
 
-    par = lammps(cmdargs=ARGS)
+    par = mpi.parallel()
     r_par = pour(par, restart)
     par.close()
 
-    part = ARGS + ["-partition", f"{nprocs}x1", "-plog", "none", "-pscreen", "none",
-                   "-in", os.devnull]
-    ser = lammps(cmdargs=part)
+    ser = mpi.serial_per_rank(nprocs)
     r_ser = pour(ser, None)
     ser.close()
 
-    re = lammps(cmdargs=part)
+    re = mpi.serial_per_rank(nprocs)
     re.command(f"read_restart {restart}")
     re.command("comm_modify vel yes")
-    re.commands_list(trp.continuation_commands())
+    re.commands_list(scenes.mid_pour_continuation())
     re.command("timestep 1e-3")
     re.command("run 0")
     f_re, t_re = gather(re, "f"), gather(re, "torque")
     natoms_re = re.get_natoms()
 
-    n = trp.N
+    n = scenes.MID_POUR_N
     for name, r in (("2 ranks", r_par), ("1 rank", r_ser)):
         if r["natoms"] != n or r["inserted"] != n:
             failures.append(f"{name}: natoms {r['natoms']} inserted {r['inserted']} != {n}")
@@ -97,15 +89,10 @@ def main():
     dre = max(np.abs(f_re - r_par["f"]).max() / scale, np.abs(t_re - r_par["t"]).max() / scale_t)
     if natoms_re != len(r_par["f"]) or not dre < 1e-12:
         failures.append(f"restart from 2 ranks read on 1: natoms {natoms_re}, force diff {dre:.3g}")
-    re.finalize()
-    if failures:
-        for f in failures:
-            print(f"[rank {rank}] FAIL {f}", flush=True)
-        sys.exit(1)
-    if rank == 0:
-        print(f"mpi_robustness: pour of {n} on {nprocs} ranks == 1 rank (set-up forces "
-              f"{df:.2g} of max, packing {r_par['pk']:.4f} vs {r_ser['pk']:.4f}); restart "
-              f"written on {nprocs} read on 1: forces to {dre:.2g}", flush=True)
+    mpi.finish(re, failures,
+               f"mpi_robustness: pour of {n} on {nprocs} ranks == 1 rank (set-up forces "
+               f"{df:.2g} of max, packing {r_par['pk']:.4f} vs {r_ser['pk']:.4f}); restart "
+               f"written on {nprocs} read on 1: forces to {dre:.2g}")
 
 
 if __name__ == "__main__":

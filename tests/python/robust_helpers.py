@@ -1,20 +1,24 @@
 """Helpers for test_robustness.py and test_restart_pour.py: run a scene with a log file,
-sample per-atom and per-contact data, and reduce them to the robustness checks of issue 9
-(finite state, no lost atom, bounded kinetic energy, largest overlap, solver counters).
+sample per-atom and per-contact data, and reduce them to the robustness checks (finite
+state, no lost atom, bounded kinetic energy, largest overlap, solver counters).
 
 Everything is read back from LAMMPS output files written at full precision, so the checks
 do not depend on the plugin's own kernel.
 """
 import json
-import math
 import os
 import re
 
 import numpy as np
 
 import ed_helpers_pour as h
+import geometry
 
 COUNTER_PREFIX = "granular/ellipsoid counters: "
+
+# ELLIPSOID_DEP_LONG=1: more collision poses, more particles and steps in the pours
+LONG = os.environ.get("ELLIPSOID_DEP_LONG", "0") not in ("", "0")
+NEAR = 1.0 + 1e-9    # eta = zeta = NEAR: a near-sphere
 
 ATOM_COLS = ("id x y z vx vy vz fx fy fz tqx tqy tqz quatw quati quatj quatk "
              "shapex shapey shapez").split()
@@ -104,7 +108,7 @@ def analyse(lmp, work, wall_z=None):
     if wall_z is not None:
         for _, a in frames:
             for row in a:
-                low = h.lowest_z(row[13:17], 0.5 * row[17:20], row[3])
+                low = geometry.lowest_z(row[13:17], 0.5 * row[17:20], row[3])
                 worst_wall = max(worst_wall, (wall_z - low) / (0.5 * row[17:20].min()))
     return {
         "log": log, "frames": frames, "finite": bool(finite), "thermo": thermo,
@@ -116,7 +120,8 @@ def analyse(lmp, work, wall_z=None):
 
 
 def assert_robust(res, natoms, ke_bound, overlap_frac, min_contacts=1, label=""):
-    """The five checks of the issue, with a message naming the case and the numbers."""
+    """The five robustness checks (module docstring), with a message naming the case and the
+    numbers."""
     c = res["counters"]
     msg = (f"{label}: natoms {res['natoms']}, ke_max {res['ke_max']:.4g} (bound "
            f"{ke_bound:.4g}), overlap pair {res['overlap_pair']:.4g} wall "
@@ -129,53 +134,14 @@ def assert_robust(res, natoms, ke_bound, overlap_frac, min_contacts=1, label="")
     assert c["not_converged"] <= 1e-6 * c["contacts"], "not converged: " + msg
 
 
-def quat_axis_angle(axis, degrees):
-    axis = np.asarray(axis, float)
-    axis = axis / np.linalg.norm(axis)
-    half = math.radians(degrees) / 2
-    return np.concatenate([[math.cos(half)], math.sin(half) * axis])
+def mass_of(semi):
+    """Mass of a body of density 1."""
+    return geometry.volume(semi)
 
 
-def support_half_extent(q, semi, n):
-    """h(n) - n.c: distance from the centre to the supporting plane with normal n."""
-    m = h.support_matrix(q, semi)
-    n = np.asarray(n, float)
-    return math.sqrt(n @ m @ n)
-
-
-def gap_along(q1, s1, q2, s2, n):
-    """Centre distance along unit n at which the two bodies' supporting planes of normal n
-    coincide (touching, when n is the common normal)."""
-    return support_half_extent(q1, s1, n) + support_half_extent(q2, s2, n)
-
-
-def _fibonacci(n):
-    k = np.arange(n) + 0.5
-    z = 1 - 2 * k / n
-    phi = math.pi * (1 + 5 ** 0.5) * k
-    r = np.sqrt(1 - z * z)
-    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
-
-
-def touch_distance(q1, s1, q2, s2, u):
-    """Centre distance along unit u at which the bodies (fixed orientations) first touch:
-    the radial function of the Minkowski sum A + (-B), rho(u) = min over n.u > 0 of
-    (h_A(n) + h_B(n)) / n.u, from 20000 directions refined by Nelder-Mead."""
-    from scipy import optimize
-    ma, mb = h.support_matrix(q1, s1), h.support_matrix(q2, s2)
-    u = np.asarray(u, float) / np.linalg.norm(u)
-
-    def ratio(n):
-        n = n / np.linalg.norm(n)
-        nu = n @ u
-        if nu <= 1e-12:
-            return 1e300
-        return (math.sqrt(n @ ma @ n) + math.sqrt(n @ mb @ n)) / nu
-
-    dirs = _fibonacci(20000)
-    dirs = dirs[dirs @ u > 1e-6]
-    vals = (np.sqrt(np.einsum("ij,jk,ik->i", dirs, ma, dirs)) +
-            np.sqrt(np.einsum("ij,jk,ik->i", dirs, mb, dirs))) / (dirs @ u)
-    best = dirs[np.argsort(vals)[:4]]
-    return min(optimize.minimize(ratio, g, method="Nelder-Mead",
-                                 options={"xatol": 1e-12, "fatol": 1e-14}).fun for g in best)
+def report(case, res):
+    """One `ROBUST case: ...` line of the measured numbers (doc/robustness.md; pytest -s)."""
+    c = res["counters"]
+    print(f"\nROBUST {case}: overlap/c_min pair {res['overlap_pair']:.3g} wall "
+          f"{res['overlap_wall']:.3g}, ke_max {res['ke_max']:.4g}, contacts {c['contacts']}, "
+          f"not converged {c['not_converged']}, mean iterations {c['mean_iterations']}")

@@ -1,5 +1,5 @@
-"""Small LAMMPS scenes shared by the pair tests (inputs as text, so they run anywhere:
-in a Python lammps instance or a separate lmp process under mpirun)."""
+"""Small LAMMPS scenes shared by the tests (inputs as text or lists of commands, so they run
+anywhere: in a Python lammps instance or a separate lmp process under mpirun)."""
 
 
 def _lattice_atoms(nx, ny, nz, spacing):
@@ -68,3 +68,36 @@ set type 1 shape 1.0 1.0 1.0
 set type 1 density 1.0
 pair_style granular/ellipsoid
 """
+
+
+# A pour of MID_POUR_N triaxial ellipsoids (pair and wall with tangential history and rolling,
+# x and y periodic) inserted in batches every 1200 steps: at step MID_POUR_HALF some are still
+# to come and many touch; MID_POUR_REST more steps insert the rest.
+MID_POUR_N = 80
+MID_POUR_HALF, MID_POUR_REST = 3000, 3000
+MID_POUR_LAW = "hertz/material 2e6 0.3 0.5 tangential history 1e4 0.5 rolling constant 0.02"
+
+
+def mid_pour_commands():
+    """The whole input after `pair_style granular/ellipsoid`."""
+    return [
+        "units lj", "atom_style ellipsoid", "atom_modify map array", "boundary p p f",
+        "comm_modify vel yes", "region box block 0 8 0 8 0 10", "create_box 1 box",
+    ] + mid_pour_continuation() + ["timestep 1e-3"]
+
+
+def mid_pour_continuation():
+    """Everything an input re-specifies after read_restart (the pair style comes from the
+    file) except the time step."""
+    return [
+        "region ins block 0 8 0 8 1.5 6",
+        f"pair_coeff * * {MID_POUR_LAW}",
+        f"fix p all pour/ellipsoid {MID_POUR_N} 1 8087 region ins size mean 0.7 delta_r 0.3 "
+        "shape 1.5 1.3 density 1 vol 0.1 200 every 1200",
+        "fix g all gravity 1.0 vector 0 0 -1",
+        "fix i all nve/asphere",
+        f"fix w all wall/gran/ellipsoid {MID_POUR_LAW} zplane 0 NULL",
+        "compute pk all packing/ellipsoid 0.0 2.0",
+        "thermo_style custom step atoms f_p c_pk[1] c_pk[2]",
+        "thermo 500",
+    ]

@@ -16,9 +16,9 @@ import pytest
 
 import deposit_run
 from checkpoint_helpers import kill_after_first_checkpoint
+from conftest import root_dir
 
-ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+ROOT = root_dir()
 RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
 N = 100
 EVERY = 1000    # the pour's second batch comes between steps 1000 and 2000

@@ -19,220 +19,12 @@ import tempfile
 import numpy as np
 import pytest
 
-from conftest import new_lammps
+import geometry
+from placed_scenes import (SEMI, SPACING, array, assert_needs_ellipsoids, build_system,
+                           lattice, mc_slab_volume, network, oblate_stacks, random_pairs,
+                           section_area, vector)
 
-from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY, LMP_TYPE_VECTOR
-
-# ----------------------------------------------------------------------------------------------
-# helpers (also used by mpi_computes.py)
-
-
-def quat_from_matrix(R):
-    """unit quaternion (w, x, y, z) of a rotation matrix"""
-    from scipy.spatial.transform import Rotation
-    x, y, z, w = Rotation.from_matrix(R).as_quat()
-    return np.array([w, x, y, z])
-
-
-def quat_to_matrix(q):
-    from scipy.spatial.transform import Rotation
-    return Rotation.from_quat([q[1], q[2], q[3], q[0]]).as_matrix()
-
-
-def random_quats(rng, n):
-    q = rng.normal(size=(n, 4))
-    return q / np.linalg.norm(q, axis=1)[:, None]
-
-
-def write_data(path, box, particles):
-    """particles: list of (x(3), semi_axes(3), quat(4)); density 1; one atom type"""
-    with open(path, "w") as f:
-        f.write("ELLIPSOID_DEP compute test\n\n")
-        f.write(f"{len(particles)} atoms\n1 atom types\n{len(particles)} ellipsoids\n\n")
-        for d, (lo, hi) in zip("xyz", box):
-            f.write(f"{lo:.17g} {hi:.17g} {d}lo {d}hi\n")
-        f.write("\nAtoms # ellipsoid\n\n")
-        for k, (x, _, _) in enumerate(particles, 1):
-            f.write(f"{k} 1 1 1.0 {x[0]:.17g} {x[1]:.17g} {x[2]:.17g}\n")
-        f.write("\nEllipsoids\n\n")
-        for k, (_, s, q) in enumerate(particles, 1):
-            f.write(f"{k} {2 * s[0]:.17g} {2 * s[1]:.17g} {2 * s[2]:.17g} "
-                    f"{q[0]:.17g} {q[1]:.17g} {q[2]:.17g} {q[3]:.17g}\n")
-
-
-def build_system(box, particles, newton="off", periodic="p p f", lmp=None, extra=""):
-    """a LAMMPS instance holding the particles, pair granular/ellipsoid, not yet run"""
-    lmp = lmp or new_lammps()
-    fd, path = tempfile.mkstemp(suffix=".data", prefix="computes_")
-    os.close(fd)
-    try:
-        write_data(path, box, particles)
-        lmp.commands_string(f"""
-            units lj
-            atom_style ellipsoid
-            atom_modify map array
-            newton {newton}
-            comm_modify vel yes
-            boundary {periodic}
-            {extra}
-            read_data {path}
-            pair_style granular/ellipsoid
-            pair_coeff * * hertz 1e5 0 tangential none
-            neighbor 0.2 bin
-            """)
-    finally:
-        os.remove(path)
-    return lmp
-
-
-def vector(lmp, cid):
-    values = lmp.numpy.extract_compute(cid, LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR)
-    return np.array(values, dtype=float)
-
-
-def array(lmp, cid):
-    return np.array(lmp.numpy.extract_compute(cid, LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY), dtype=float)
-
-
-def ellipsoid_volume(s):
-    return 4.0 / 3.0 * math.pi * s[0] * s[1] * s[2]
-
-
-# ----------------------------------------------------------------------------------------------
-# configurations
-
-
-SEMI = np.array([0.45, 0.3, 0.2])    # triaxial, bounding radius 0.45
-SPACING = 1.0                         # lattice constant > 2 * 0.45: nothing touches
-
-
-def lattice(n=(4, 4, 5), seed=1):
-    """simple cubic lattice of randomly oriented triaxial ellipsoids in a periodic xy box"""
-    rng = np.random.default_rng(seed)
-    nx, ny, nz = n
-    quats = random_quats(rng, nx * ny * nz)
-    parts = []
-    k = 0
-    for iz in range(nz):
-        for iy in range(ny):
-            for ix in range(nx):
-                x = np.array([(ix + 0.5) * SPACING, (iy + 0.5) * SPACING, (iz + 0.5) * SPACING])
-                parts.append((x, SEMI, quats[k]))
-                k += 1
-    box = [(0.0, nx * SPACING), (0.0, ny * SPACING), (-0.5, nz * SPACING + 1.0)]
-    return box, parts
-
-
-def network():
-    """designed contact network; returns box, particles and the expected contacts per atom"""
-    r = 0.5
-    edge = 2 * r * 0.99
-    base = np.array([3.0, 3.0, 1.0])
-    tet = [base + np.array(v) * edge for v in
-           [(0, 0, 0), (1, 0, 0), (0.5, math.sqrt(3) / 2, 0),
-            (0.5, math.sqrt(3) / 6, math.sqrt(2.0 / 3.0))]]
-    unit = np.array([1.0, 0.0, 0.0, 0.0])
-    sph = np.array([r, r, r])
-    parts = [(p, sph, unit) for p in tet]                                # atoms 1-4
-    # dangling prolate ellipsoid on the top sphere, long axis (body x) along z
-    R = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # columns: body axes
-    prolate = np.array([1.0, 0.35, 0.35])
-    top = tet[3] + np.array([0.0, 0.0, r + prolate[0] - 0.02])
-    parts.append((top, prolate, quat_from_matrix(R)))                    # atom 5
-    # near miss: parallel prolate ellipsoids along x, 0.72 apart in y (> 2 * 0.35): bounding
-    # spheres (radius 1) overlap, the ellipsoids do not
-    parts.append((np.array([3.0, 7.0, 1.0]), prolate, unit))            # atom 6
-    parts.append((np.array([3.0, 7.72, 1.0]), prolate, unit))           # atom 7
-    # two oblate ellipsoids side by side across the periodic x boundary (x = 0 = 10)
-    oblate = np.array([0.6, 0.6, 0.2])
-    parts.append((np.array([0.55, 5.0, 1.5]), oblate, unit))            # atom 8
-    parts.append((np.array([9.7, 5.0, 1.5]), oblate, unit))             # atom 9  (gap 0.85 < 1.2)
-    box = [(0.0, 10.0), (0.0, 10.0), (0.0, 6.0)]
-    expected = np.array([3, 3, 3, 4, 1, 0, 0, 1, 1])
-    return box, parts, expected
-
-
-def random_pairs(npairs=3000, seed=7, spacing=2.6, r=0.5):
-    """sphere pairs with isotropic random contact normals on a lattice; returns box, particles,
-    normals"""
-    rng = np.random.default_rng(seed)
-    normals = rng.normal(size=(npairs, 3))
-    normals /= np.linalg.norm(normals, axis=1)[:, None]
-    side = int(math.ceil(npairs ** (1.0 / 3.0)))
-    parts = []
-    sph = np.array([r, r, r])
-    unit = np.array([1.0, 0.0, 0.0, 0.0])
-    for k in range(npairs):
-        ix, iy, iz = k % side, (k // side) % side, k // (side * side)
-        c = (np.array([ix, iy, iz]) + 0.5) * spacing
-        d = normals[k] * r * 0.98
-        parts.append((c - d, sph, unit))
-        parts.append((c + d, sph, unit))
-    L = side * spacing
-    return [(0.0, L), (0.0, L), (0.0, L)], parts, normals
-
-
-def min_penetration(xa, sa, qa, xb, sb, qb):
-    """min over unit n of d(n) = sqrt(n M_A n) + sqrt(n M_B n) - n.(c_B - c_A): the
-    penetration depth when > 0 (separating-axis theorem), independent of the kernel"""
-    from scipy.optimize import minimize
-    Ma = quat_to_matrix(qa) @ np.diag(sa ** 2) @ quat_to_matrix(qa).T
-    Mb = quat_to_matrix(qb) @ np.diag(sb ** 2) @ quat_to_matrix(qb).T
-    dc = np.asarray(xb) - np.asarray(xa)
-
-    def d(uv):    # n = (u, v, 1) / |.|: directions near +z (the stacked contacts)
-        n = np.array([uv[0], uv[1], 1.0])
-        n /= np.linalg.norm(n)
-        return math.sqrt(n @ Ma @ n) + math.sqrt(n @ Mb @ n) - n @ dc
-
-    return minimize(d, [0.0, 0.0], method="Nelder-Mead",
-                    options={"xatol": 1e-12, "fatol": 1e-14}).fun
-
-
-def oblate_stacks(ncol=4, height=6, seed=3, tilt_deg=8.0):
-    """columns of flat oblate ellipsoids (semi-axes 1, 1, 0.25) stacked with small random
-    tilts and offsets, each overlapping the one below by 0.01 (checked with
-    min_penetration); columns 2.6 apart, so no side contacts"""
-    from scipy.optimize import brentq
-    from scipy.spatial.transform import Rotation
-    rng = np.random.default_rng(seed)
-    semi = np.array([1.0, 1.0, 0.25])
-    parts = []
-    for cx in range(ncol):
-        for cy in range(ncol):
-            below = None
-            for k in range(height):
-                axis = rng.normal(size=3)
-                axis[2] = 0.0
-                axis /= np.linalg.norm(axis)
-                rot = Rotation.from_rotvec(axis * np.radians(rng.uniform(0, tilt_deg)))
-                q = quat_from_matrix(rot.as_matrix())
-                off = rng.uniform(-0.1, 0.1, 2)
-                x = np.array([(cx + 0.5) * 2.6 + off[0], (cy + 0.5) * 2.6 + off[1], 0.3])
-                if below is not None:
-                    # lower the particle from "just above" until it overlaps the one below
-                    def depth(z):
-                        return min_penetration(below[0], semi, below[2],
-                                               np.array([x[0], x[1], z]), semi, q) - 0.01
-                    x[2] = brentq(depth, below[0][2], below[0][2] + 1.0, xtol=1e-12)
-                parts.append((x, semi, q))
-                below = parts[-1]
-    box = [(0.0, ncol * 2.6), (0.0, ncol * 2.6), (0.0, height * 0.6 + 2.0)]
-    return box, parts
-
-
-def mc_slab_volume(x, semi, q, zlo, zhi, rng, n=400000):
-    """Monte Carlo volume of an ellipsoid between two planes: uniform points in the unit ball
-    mapped onto the ellipsoid; returns (estimate, standard error)"""
-    p = rng.normal(size=(n, 3))
-    p /= np.linalg.norm(p, axis=1)[:, None]
-    p *= rng.uniform(size=(n, 1)) ** (1.0 / 3.0)
-    pts = x + (p * semi) @ quat_to_matrix(q).T
-    inside = (pts[:, 2] >= zlo) & (pts[:, 2] <= zhi)
-    frac = inside.mean()
-    v = ellipsoid_volume(semi)
-    return v * frac, v * math.sqrt(frac * (1 - frac) / n)
-
+from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY
 
 # ----------------------------------------------------------------------------------------------
 # packing/ellipsoid
@@ -247,14 +39,14 @@ def test_lattice_volume_fraction_whole_layers():
     v = vector(lmp, "pk")
     lmp.close()
     nx, ny = 4, 4
-    expected = 3 * nx * ny * ellipsoid_volume(SEMI) / (nx * ny * SPACING ** 2 * 3.0)
+    expected = 3 * nx * ny * geometry.volume(SEMI) / (nx * ny * SPACING ** 2 * 3.0)
     assert v[0] == pytest.approx(expected, rel=1e-12)
     assert v[1] == 3 * nx * ny
     assert v[2] == 0.0 and v[3] == 0.0    # nothing touches
     assert v[6] == 3 * nx * ny            # all rattlers
     assert (v[4], v[5]) == (1.0, 4.0)
     assert v[7] == pytest.approx(2 * np.prod(SEMI) ** (1 / 3), rel=1e-12)
-    assert v[8] == pytest.approx(3 * nx * ny * ellipsoid_volume(SEMI), rel=1e-12)
+    assert v[8] == pytest.approx(3 * nx * ny * geometry.volume(SEMI), rel=1e-12)
 
 
 def test_slab_cuts_ellipsoids_monte_carlo():
@@ -273,7 +65,7 @@ def test_slab_cuts_ellipsoids_monte_carlo():
         var += err ** 2
     area = (box[0][1] - box[0][0]) * (box[1][1] - box[1][0])
     # the cut layers really are cut (the test would not notice a whole-particle count otherwise)
-    whole = sum(ellipsoid_volume(s) for x, s, q in parts if zlo <= x[2] < zhi)
+    whole = sum(geometry.volume(s) for x, s, q in parts if zlo <= x[2] < zhi)
     assert abs(total - whole) > 20 * math.sqrt(var)
     assert v[8] == pytest.approx(total, abs=5 * math.sqrt(var))
     assert v[0] == pytest.approx(v[8] / (area * (zhi - zlo)), rel=1e-12)
@@ -285,19 +77,9 @@ def test_slab_volume_exact_integral():
     cross-section area obtained from the quadratic form (independent of the kernel's M_zz path)"""
     from scipy.integrate import quad
     rng = np.random.default_rng(11)
-    q = random_quats(rng, 1)[0]
+    q = geometry.random_quats(rng, 1)[0]
     semi = np.array([0.9, 0.5, 0.3])
     c = np.array([2.0, 2.0, 3.0])
-    R = quat_to_matrix(q)
-    Q = R @ np.diag(1 / semi ** 2) @ R.T
-
-    def area(z):
-        # {(x,y): [x y dz] Q [x y dz]^T <= 1}: ellipse with matrix A = Q_xy, centre shift
-        A = Q[:2, :2]
-        b = Q[:2, 2] * (z - c[2])
-        rhs = 1 - Q[2, 2] * (z - c[2]) ** 2 + b @ np.linalg.solve(A, b)
-        return math.pi * max(rhs, 0.0) / math.sqrt(np.linalg.det(A))
-
     box = [(0.0, 4.0), (0.0, 4.0), (0.0, 6.0)]
     lmp = build_system(box, [(c, semi, q)])
     cuts = [(2.5, 3.1), (2.0, 4.0), (3.2, 3.9), (1.0, 2.95)]
@@ -306,7 +88,8 @@ def test_slab_volume_exact_integral():
     lmp.command("run 0")
     for k, (a, b) in enumerate(cuts):
         v = vector(lmp, f"pk{k}")
-        ref, _ = quad(area, a, b, epsabs=1e-13, epsrel=1e-12, limit=200)
+        ref, _ = quad(lambda z: section_area(c, semi, q, z), a, b, epsabs=1e-13, epsrel=1e-12,
+                      limit=200)
         assert v[8] == pytest.approx(ref, rel=1e-8, abs=1e-12)
     lmp.close()
 
@@ -362,7 +145,7 @@ def test_subgroup_counts_contacts_with_any_particle():
     assert v[3] == pytest.approx(3.0, rel=1e-14)    # 5 is a rattler of the whole packing
     assert v[6] == 0
     assert c[8] == 13
-    vol = sum(ellipsoid_volume(s) for _, s, _ in parts[:4])
+    vol = sum(geometry.volume(s) for _, s, _ in parts[:4])
     assert v[8] == pytest.approx(vol, rel=1e-12)
 
 
@@ -378,7 +161,7 @@ def test_auto_slab():
     va, vf, vc = vector(lmp, "pa"), vector(lmp, "pf"), vector(lmp, "pc")
     lmp.close()
     d = 2 * np.prod(SEMI) ** (1 / 3)
-    h = [math.sqrt(((quat_to_matrix(q)[2] * s) ** 2).sum()) for _, s, q in parts]
+    h = [geometry.half_height(q, s) for _, s, q in parts]
     bottom = min(x[2] - hz for (x, _, _), hz in zip(parts, h))
     top = max(x[2] + hz for (x, _, _), hz in zip(parts, h))
     assert va[7] == pytest.approx(d, rel=1e-12)
@@ -403,15 +186,7 @@ def test_errors():
     with pytest.raises(Exception, match="granular/ellipsoid"):
         lmp.command("run 0")
     lmp.close()
-    lmp = new_lammps()
-    lmp.commands_string("""
-        atom_style sphere
-        region b block 0 1 0 1 0 1
-        create_box 1 b
-        """)
-    with pytest.raises(Exception, match="atom style ellipsoid"):
-        lmp.command("compute ch all contact/histo")
-    lmp.close()
+    assert_needs_ellipsoids("compute ch all contact/histo")
 
 
 # ----------------------------------------------------------------------------------------------
@@ -499,7 +274,7 @@ def test_orient_known_directions():
     vm = vector(lmp, "om")
     lmp.close()
     n = len(parts)
-    u = np.array([quat_to_matrix(q)[:, 0] for _, _, q in parts])   # longest = body x
+    u = np.array([geometry.rotation(q)[:, 0] for _, _, q in parts])   # longest = body x
     Q = 1.5 * np.einsum("ni,nj->ij", u, u) / n - 0.5 * np.eye(3)
     w, vec = np.linalg.eigh(Q)
     assert v[0] == pytest.approx(w[-1], rel=1e-10)
@@ -510,12 +285,12 @@ def test_orient_known_directions():
     theta = np.linspace(0, math.pi, 7)
     ref = np.histogram(np.arccos(np.concatenate([u[:, 2], -u[:, 2]])), bins=theta)[0]
     np.testing.assert_allclose(a[:, 2] * 2 * n, ref, atol=1e-6)
-    um = np.array([quat_to_matrix(q)[:, 1] for _, _, q in parts])
+    um = np.array([geometry.rotation(q)[:, 1] for _, _, q in parts])
     assert vm[5] == pytest.approx((um[:, 2] ** 2).mean(), rel=1e-12)
 
     # all long axes vertical
     R = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])
-    parts = [(x, s, quat_from_matrix(R)) for x, s, _ in parts]
+    parts = [(x, s, geometry.quat_from_matrix(R)) for x, s, _ in parts]
     lmp = build_system(box, parts)
     lmp.command("compute ol all orient/histo bins 6")
     lmp.command("run 0")

@@ -22,10 +22,12 @@ import tempfile
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq, minimize
+from scipy.optimize import brentq
 
-ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+import geometry
+from conftest import new_lammps, root_dir
+
+ROOT = root_dir()
 
 
 def liggghts_binary():
@@ -52,47 +54,24 @@ AXES = np.array([1.4 * B, B, B / 1.8])
 E_STAR = E / (2.0 * (1.0 - NU * NU))
 
 
-def axis_angle_quat(axis, angle_deg):
-    axis = np.asarray(axis, float) / np.linalg.norm(axis)
-    h = np.radians(angle_deg) / 2.0
-    return np.concatenate([[np.cos(h)], np.sin(h) * axis])
-
-
-def rotation(q):
-    w, x, y, z = q / np.linalg.norm(q)
-    return np.array([[w*w + x*x - y*y - z*z, 2*(x*y - w*z), 2*(x*z + w*y)],
-                     [2*(x*y + w*z), w*w - x*x + y*y - z*z, 2*(y*z - w*x)],
-                     [2*(x*z - w*y), 2*(y*z + w*x), w*w - x*x - y*y + z*z]])
-
-
 def gap_minimum(ma, mb, cab):
-    """min over unit n of d(n) = sqrt(n'Ma n) + sqrt(n'Mb n) - n.(cB - cA): (d, n)"""
-    def d(angles):
-        th, ph = angles
-        n = np.array([np.sin(th) * np.cos(ph), np.sin(th) * np.sin(ph), np.cos(th)])
-        return np.sqrt(n @ ma @ n) + np.sqrt(n @ mb @ n) - n @ cab
-    best = None
-    u = cab / np.linalg.norm(cab)
-    starts = [(np.arccos(np.clip(u[2], -1, 1)), np.arctan2(u[1], u[0]))]
-    starts += [(t, p) for t in np.linspace(0.3, 2.8, 5) for p in np.linspace(0, 5.5, 6)]
-    for s in starts:
-        r = minimize(d, s, method="Nelder-Mead", options={"xatol": 1e-13, "fatol": 1e-18,
-                                                          "maxiter": 20000})
-        if best is None or r.fun < best.fun:
-            best = r
-    th, ph = best.x
-    return best.fun, np.array([np.sin(th) * np.cos(ph), np.sin(th) * np.sin(ph), np.cos(th)])
+    """min over unit n of the gap function d(n): (d, n), from the centre line and 30
+    directions spread over the sphere"""
+    u = geometry.unit(cab)
+    starts = [u] + [(np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t))
+                    for t in np.linspace(0.3, 2.8, 5) for p in np.linspace(0, 5.5, 6)]
+    return geometry.min_gap(ma, mb, cab, starts, xatol=1e-13, fatol=1e-18, maxiter=20000)
 
 
 # the pair: A at the origin, B along DIRECTION at the distance that gives OVERLAP
 AXIS_A, ANGLE_A = [0.3, -0.5, 0.8], 37.0
 AXIS_B, ANGLE_B = [-0.6, 0.2, 0.77], 112.0
-QA = axis_angle_quat(AXIS_A, ANGLE_A)
-QB = axis_angle_quat(AXIS_B, ANGLE_B)
+QA = geometry.quat_axis_angle(AXIS_A, ANGLE_A)
+QB = geometry.quat_axis_angle(AXIS_B, ANGLE_B)
 DIRECTION = np.array([0.8, 0.35, 0.25]) / np.linalg.norm([0.8, 0.35, 0.25])
 OVERLAP = 8.0e-6
-M_A = rotation(QA) @ np.diag(AXES ** 2) @ rotation(QA).T
-M_B = rotation(QB) @ np.diag(AXES ** 2) @ rotation(QB).T
+M_A = geometry.shape_matrix(QA, AXES)
+M_B = geometry.shape_matrix(QB, AXES)
 
 
 @functools.lru_cache(maxsize=None)
@@ -101,11 +80,6 @@ def centre_b():
     dist = brentq(lambda t: gap_minimum(M_A, M_B, t * DIRECTION)[0] - OVERLAP, 0.5e-3, 3.5e-3,
                   xtol=1e-15)
     return dist * DIRECTION
-
-
-def norm_axis(axis):
-    a = np.asarray(axis, float)
-    return a / np.linalg.norm(a)
 
 
 def run_liggghts(script, workdir, extra=()):
@@ -137,7 +111,7 @@ def read_atoms(path):
 
 
 def liggghts_pair_script(cb, v_b=(0.0, 0.0, 0.0), steps=0, dt=1e-7):
-    a2, b2 = norm_axis(AXIS_A), norm_axis(AXIS_B)
+    a2, b2 = geometry.unit(AXIS_A), geometry.unit(AXIS_B)
     return f"""
 atom_style superquadric
 atom_modify map array
@@ -175,9 +149,8 @@ run {steps}
 
 
 def lammps_pair(cb, v_b=(0.0, 0.0, 0.0), steps=0, dt=1e-7):
-    from conftest import new_lammps
     lmp = new_lammps()
-    a2, b2 = norm_axis(AXIS_A), norm_axis(AXIS_B)
+    a2, b2 = geometry.unit(AXIS_A), geometry.unit(AXIS_B)
     lmp.commands_string(f"""
 units si
 atom_style ellipsoid
@@ -233,7 +206,7 @@ def test_static_pair_matches_lammps_and_theory():
     # LIGGGHTS vs LAMMPS plugin: same kernel, same Hertz law
     np.testing.assert_allclose(fl, f_lmp, rtol=0, atol=1e-8 * scale)
     np.testing.assert_allclose(tl, t_lmp, rtol=0, atol=1e-8 * scale * AXES[0])
-    # vs the numpy geometry (Nelder-Mead on angles: ~1e-7 in the normal)
+    # vs the numpy geometry (Nelder-Mead: ~1e-7 in the normal)
     np.testing.assert_allclose(fl[0], -fn_theory * n, rtol=0, atol=1e-5 * fn_theory)
     np.testing.assert_allclose(fl[1], -fl[0], rtol=0, atol=1e-12 * scale)
     # contact point: the torque arm about A perpendicular to the force, both engines

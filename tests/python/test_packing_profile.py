@@ -16,30 +16,20 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-import test_computes as tc
-from conftest import new_lammps
+import geometry
+import placed_scenes as ps
 
 
 def profile(lmp, cid):
-    return tc.array(lmp, cid)
-
-
-def section_area(x, semi, q, z):
-    """area of {p : (p - x)^T Q (p - x) <= 1, p_z = z}"""
-    R = tc.quat_to_matrix(q)
-    Q = R @ np.diag(1 / np.asarray(semi) ** 2) @ R.T
-    A = Q[:2, :2]
-    b = Q[:2, 2] * (z - x[2])
-    rhs = 1 - Q[2, 2] * (z - x[2]) ** 2 + b @ np.linalg.solve(A, b)
-    return math.pi * max(rhs, 0.0) / math.sqrt(np.linalg.det(A))
+    return ps.array(lmp, cid)
 
 
 def quadrature_volume(x, semi, q, z1, z2):
-    h = math.sqrt(((tc.quat_to_matrix(q)[2] * semi) ** 2).sum())
+    h = geometry.half_height(q, semi)
     a, b = max(z1, x[2] - h), min(z2, x[2] + h)
     if b <= a:
         return 0.0
-    return quad(lambda z: section_area(x, semi, q, z), a, b, epsabs=1e-14, epsrel=1e-12)[0]
+    return quad(lambda z: ps.section_area(x, semi, q, z), a, b, epsabs=1e-14, epsrel=1e-12)[0]
 
 
 def sphere_slab_volume(c, r, z1, z2):
@@ -56,7 +46,7 @@ def test_sphere_layer_closed_form():
                for i in range(3) for j in range(3)]
     parts = [(c, np.array([r, r, r]), unit) for c in centres]
     box = [(0.0, 3.0), (0.0, 3.0), (0.0, 3.0)]
-    lmp = tc.build_system(box, parts)
+    lmp = ps.build_system(box, parts)
     lmp.command("compute prof all packing/profile 0.15 zlo 0.3 zhi 2.0")
     lmp.command("run 0")
     a = profile(lmp, "prof")
@@ -75,16 +65,16 @@ def test_sphere_layer_closed_form():
 
 
 def test_triaxial_against_quadrature_and_packing_compute():
-    box, parts = tc.lattice(n=(3, 3, 3), seed=21)
+    box, parts = ps.lattice(n=(3, 3, 3), seed=21)
     width = 0.37    # not commensurate with the lattice: the bins cut the particles
-    lmp = tc.build_system(box, parts)
+    lmp = ps.build_system(box, parts)
     lmp.commands_string(f"""
         compute prof all packing/profile {width}
         compute pk all packing/ellipsoid EDGE EDGE
         """)
     lmp.command("run 0")
     a = profile(lmp, "prof")
-    vsolid = tc.vector(lmp, "pk")[8]
+    vsolid = ps.vector(lmp, "pk")[8]
     lmp.close()
     zlo, zhi = box[2]
     nbins = math.ceil((zhi - zlo) / width)
@@ -104,12 +94,12 @@ def test_periodic_z_images():
     """an ellipsoid across the periodic z boundary: its two parts land at the bottom and top"""
     semi = np.array([0.5, 0.3, 0.45])
     parts = [(np.array([1.0, 1.0, 0.2]), semi, np.array([1.0, 0.0, 0.0, 0.0]))]
-    lmp = tc.build_system([(0.0, 2.0), (0.0, 2.0), (0.0, 3.0)], parts, periodic="p p p")
+    lmp = ps.build_system([(0.0, 2.0), (0.0, 2.0), (0.0, 3.0)], parts, periodic="p p p")
     lmp.command("compute prof all packing/profile 0.75")
     lmp.command("run 0")
     a = profile(lmp, "prof")
     lmp.close()
-    v = tc.ellipsoid_volume(semi)
+    v = geometry.volume(semi)
     assert a[:, 2].sum() == pytest.approx(v, rel=1e-12)
     # the part below z = 0 (0.25 of its half-height 0.45) reappears in the top bin [2.25, 3];
     # in units of the half-height it is a unit sphere's cap below 0 for a centre at 0.2 / 0.45
@@ -120,8 +110,8 @@ def test_periodic_z_images():
 
 
 def test_fix_ave_time_output(tmp_path):
-    box, parts = tc.lattice(n=(2, 2, 2), seed=3)
-    lmp = tc.build_system(box, parts)
+    box, parts = ps.lattice(n=(2, 2, 2), seed=3)
+    lmp = ps.build_system(box, parts)
     path = os.path.join(str(tmp_path), "profile.dat")
     lmp.commands_string(f"""
         compute prof all packing/profile 0.5
@@ -146,20 +136,12 @@ def test_fix_ave_time_output(tmp_path):
     ("1e-9", "exceed the limit"),
 ])
 def test_bad_input(args, message):
-    box, parts = tc.lattice(n=(2, 2, 2))
-    lmp = tc.build_system(box, parts)
+    box, parts = ps.lattice(n=(2, 2, 2))
+    lmp = ps.build_system(box, parts)
     with pytest.raises(Exception, match=message):
         lmp.command(f"compute prof all packing/profile {args}")
     lmp.close()
 
 
 def test_needs_ellipsoids():
-    lmp = new_lammps()
-    lmp.commands_string("""
-        atom_style sphere
-        region b block 0 1 0 1 0 1
-        create_box 1 b
-        """)
-    with pytest.raises(Exception, match="atom style ellipsoid"):
-        lmp.command("compute prof all packing/profile 0.1")
-    lmp.close()
+    ps.assert_needs_ellipsoids("compute prof all packing/profile 0.1")

@@ -9,6 +9,7 @@ for equal spheres of radius R (R* = R/2) and mass m (m* = m/2).
 import numpy as np
 import pytest
 
+import geometry
 from conftest import new_lammps
 
 RADIUS = 0.5
@@ -27,8 +28,7 @@ def cluster(seed=3, n=12):
             pos.append(p)
     vel = rng.normal(0.0, 0.3, (n, 3))
     omega = rng.normal(0.0, 0.5, (n, 3))
-    quats = rng.normal(size=(n, 4))
-    quats /= np.linalg.norm(quats, axis=1)[:, None]
+    quats = geometry.random_quats(rng, n)
     return np.array(pos), vel, omega, quats
 
 
@@ -73,9 +73,8 @@ def run_forces(style, pos, vel, omega, quats, newton="off"):
                     "tangential linear_nohistory 0 0")
     else:
         for tag in range(1, len(pos) + 1):
-            q = quats[tag - 1]
-            lmp.command(f"set atom {tag} quat {q[1]} {q[2]} {q[3]} "
-                        f"{2 * np.degrees(np.arccos(np.clip(q[0], -1, 1)))}")
+            lmp.command("set atom {} quat {:.17g} {:.17g} {:.17g} {:.17g}".format(
+                tag, *geometry.axis_angle(quats[tag - 1])))
         am = lmp.numpy.extract_atom("angmom")
         for k, tag in enumerate(ids):
             am[k][:] = inertia * omega[tag - 1]    # spheres: L = I omega in any frame

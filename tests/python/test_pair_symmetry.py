@@ -1,6 +1,7 @@
 """The same physics whatever the atom order, and under atom_style ellipsoid superellipsoid."""
 import numpy as np
 
+import geometry
 from conftest import new_lammps
 
 SEMI = (0.7, 0.5, 0.36)
@@ -10,8 +11,7 @@ def configuration(seed=8, n=40):
     """Random positions in a small periodic box (many overlaps), orientations, velocities."""
     rng = np.random.default_rng(seed)
     pos = rng.uniform(0.0, 3.2, (n, 3))
-    quat = rng.normal(size=(n, 4))
-    quat /= np.linalg.norm(quat, axis=1)[:, None]
+    quat = geometry.random_quats(rng, n)
     vel = rng.normal(0.0, 0.5, (n, 3))
     angmom = rng.normal(0.0, 0.05, (n, 3))
     return pos, quat, vel, angmom
@@ -37,10 +37,8 @@ def forces(order, atom_style="ellipsoid", tangential="viscous 0.3"):
     if "superellipsoid" in atom_style:
         lmp.command("set type 1 block 2.0 2.0")
     for tag, k in enumerate(order, start=1):
-        q = quat[k]
-        angle = 2 * np.degrees(np.arccos(np.clip(q[0], -1, 1)))
-        axis = q[1:] if np.linalg.norm(q[1:]) > 0 else np.array([0, 0, 1.0])
-        lmp.command(f"set atom {tag} quat {axis[0]} {axis[1]} {axis[2]} {angle}")
+        lmp.command("set atom {} quat {:.17g} {:.17g} {:.17g} {:.17g}".format(
+            tag, *geometry.axis_angle(quat[k])))
     nlocal = lmp.extract_global("nlocal")
     ids = lmp.numpy.extract_atom("id")[:nlocal]
     v = lmp.numpy.extract_atom("v")

@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
+import geometry
 import pores
 from conftest import new_lammps, root_dir
 
@@ -33,11 +34,6 @@ def cubic_lattice(n=2, layers=8):
                   for i in range(n) for j in range(n) for k in range(layers)])
     p = pores.Particles(c, np.tile([1.0, 0, 0, 0], (len(c), 1)), np.full((len(c), 3), SPHERE_R))
     return p, np.array([[0, n], [0, n], [0, layers]], dtype=float)
-
-
-def random_rotations(rng, n):
-    q = rng.normal(size=(n, 4))
-    return q / np.linalg.norm(q, axis=1)[:, None]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -113,7 +109,7 @@ def test_triaxial_area_quadrature():
     assert pores.ellipsoid_area(np.array([a, b, c])) == pytest.approx(ref, rel=1e-11)
     # the zone quadrature over the whole surface, for tilted copies
     rng = np.random.default_rng(3)
-    R = pores.rotation_matrices(random_rotations(rng, 5))
+    R = pores.rotation_matrices(geometry.random_quats(rng, 5))
     semi = np.tile([a, b, c], (5, 1))
     whole, change = pores.converged_zone_area(semi, R, -np.ones(5), np.ones(5))
     assert change <= 1e-12
@@ -139,7 +135,7 @@ def test_tilted_cut_adds_up():
     up to the whole (each zone converged on its own)"""
     rng = np.random.default_rng(5)
     semi = np.array([[0.9, 0.5, 0.25]])
-    R = pores.rotation_matrices(random_rotations(rng, 1))
+    R = pores.rotation_matrices(geometry.random_quats(rng, 1))
     cuts = np.array([-1.0, -0.62, -0.1, 0.33, 0.8, 1.0])
     zones = [pores.converged_zone_area(semi, R, cuts[k:k + 1], cuts[k + 1:k + 2])[0][0]
              for k in range(5)]
@@ -233,7 +229,7 @@ def test_voxel_porosity_converges():
     rng = np.random.default_rng(12)
     cells = np.array([[i, j, k + 0.5] for i in range(3) for j in range(3) for k in range(4)])
     n = len(cells)
-    p = pores.Particles(cells + rng.uniform(-0.05, 0.05, size=(n, 3)), random_rotations(rng, n),
+    p = pores.Particles(cells + rng.uniform(-0.05, 0.05, size=(n, 3)), geometry.random_quats(rng, n),
                         np.tile([0.45, 0.3, 0.2], (n, 1)))
     box = np.array([[0, 3], [0, 3], [0, 4]], float)
     zlo, zhi = 0.83, 3.27

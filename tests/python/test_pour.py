@@ -13,6 +13,7 @@ import pytest
 from scipy import integrate, special, stats
 
 import ed_helpers_pour as h
+import geometry
 
 RMIN, RMAX, ALPHA, BETA = 0.02, 0.06, 3.0, 3.0
 ETA, ZETA = 1.4, 1.8
@@ -103,7 +104,7 @@ def test_orientation_uniform(big_pour):
     """Each body axis is uniform on the sphere: cos(theta) with z uniform on [-1, 1] and the
     azimuth uniform on [0, 2 pi) (KS, p > 0.001 for each of the 6 tests)."""
     snap = big_pour[0]
-    rots = np.array([h.rotation(q) for q in snap["quat"]])
+    rots = np.array([geometry.rotation(q) for q in snap["quat"]])
     for axis in range(3):
         u = rots[:, :, axis]
         p_cos = stats.kstest(u[:, 2], stats.uniform(loc=-1, scale=2).cdf).pvalue
@@ -185,13 +186,13 @@ def test_no_insertion_overlaps(tmp_path):
     box = snap["box"]
     checked = 0
     for i in range(n):
-        for j in range(i + 1, n):
-            d = h.minimum_image(snap["x3"][j] - snap["x3"][i], box, (True, True, False))
-            reach = snap["semi"][i].max() + snap["semi"][j].max()
-            if d @ d > reach * reach:
-                continue
-            gap, _ = h.separating_axis(np.zeros(3), snap["quat"][i], snap["semi"][i], d,
-                                       snap["quat"][j], snap["semi"][j])
+        # the pairs (i, j > i) whose bounding spheres meet
+        d = geometry.minimum_image(snap["x3"][i + 1:] - snap["x3"][i], box, (True, True, False))
+        reach = snap["semi"][i].max() + snap["semi"][i + 1:].max(axis=1)
+        for k in np.flatnonzero((d * d).sum(axis=1) <= reach * reach):
+            j = i + 1 + k
+            gap, _ = geometry.separating_axis(np.zeros(3), snap["quat"][i], snap["semi"][i],
+                                              d[k], snap["quat"][j], snap["semi"][j])
             assert gap < 0.0, (snap["id"][i], snap["id"][j], gap)
             checked += 1
     assert checked > 20  # close pairs existed
@@ -200,10 +201,10 @@ def test_no_insertion_overlaps(tmp_path):
 def test_overlap_checker_detects_overlap():
     """The independent checker reports no separating axis for overlapping ellipsoids."""
     q = [1, 0, 0, 0]
-    gap, _ = h.separating_axis(np.zeros(3), q, [0.3, 0.1, 0.1], [0.35, 0.05, 0.0], q,
+    gap, _ = geometry.separating_axis(np.zeros(3), q, [0.3, 0.1, 0.1], [0.35, 0.05, 0.0], q,
                                [0.3, 0.1, 0.1])
     assert gap > 0.0
-    gap, _ = h.separating_axis(np.zeros(3), q, [0.3, 0.1, 0.1], [0.0, 0.25, 0.0], q,
+    gap, _ = geometry.separating_axis(np.zeros(3), q, [0.3, 0.1, 0.1], [0.0, 0.25, 0.0], q,
                                [0.3, 0.1, 0.1])
     assert gap < 0.0
 
@@ -293,24 +294,16 @@ def test_restart_continues_pour(tmp_path):
     ("10 1 5 region xcyl", r"must be a z-axis cylinder"),
 ])
 def test_errors(tmp_path, args, pattern):
-    lmp = h.new_lammps(tmp_path)
-    for c in base_commands():
-        lmp.command(c)
-    lmp.command("region ins block 0 1 0 1 0.5 1")
-    lmp.command("region xcyl cylinder x 0.5 0.5 0.3 0.1 0.9")
-    with pytest.raises(Exception, match=pattern):
-        lmp.command(f"fix p all pour/ellipsoid {args}")
-    lmp.close()
+    h.assert_refused(tmp_path, base_commands() + ["region ins block 0 1 0 1 0.5 1",
+                                                  "region xcyl cylinder x 0.5 0.5 0.3 0.1 0.9"],
+                     [f"fix p all pour/ellipsoid {args}"], pattern)
 
 
 def test_error_atom_style(tmp_path):
-    lmp = h.new_lammps(tmp_path)
-    lmp.command("atom_style sphere")
-    lmp.command("region box block 0 1 0 1 0 1")
-    lmp.command("create_box 1 box")
-    with pytest.raises(Exception, match="requires atom_style ellipsoid"):
-        lmp.command("fix p all pour/ellipsoid 10 1 5 region box")
-    lmp.close()
+    h.assert_refused(tmp_path, ["atom_style sphere", "region box block 0 1 0 1 0 1",
+                                "create_box 1 box"],
+                     ["fix p all pour/ellipsoid 10 1 5 region box"],
+                     "requires atom_style ellipsoid")
 
 
 def test_superellipsoid_variant(tmp_path):

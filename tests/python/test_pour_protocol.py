@@ -15,9 +15,9 @@ import pytest
 from scipy import stats
 
 import ed_helpers_pour as h
+from conftest import root_dir
 
-ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+ROOT = root_dir()
 DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 
 

@@ -1,7 +1,8 @@
-"""write_restart in the middle of a pour (issue 9): read_restart and continue.
+"""write_restart in the middle of a pour: read_restart and continue.
 
-One pour of triaxial ellipsoids (pair and wall with tangential history and rolling) is
-written to a restart file while particles are still being inserted and many are in contact.
+One pour of triaxial ellipsoids (scenes.mid_pour_commands: pair and wall with tangential
+history and rolling) is written to a restart file while particles are still being inserted
+and many are in contact.
 Checks:
 * the forces and torques of a set-up `run 0` after read_restart equal those of a set-up
   `run 0` just before writing (contact history and cached separating planes came back;
@@ -16,33 +17,10 @@ import pytest
 
 import ed_helpers_pour as h
 import robust_helpers as rb
+from scenes import (MID_POUR_HALF, MID_POUR_LAW, MID_POUR_N, MID_POUR_REST,
+                    mid_pour_commands, mid_pour_continuation)
 
-N = 80
-HALF, REST = 3000, 3000
-LAW = "hertz/material 2e6 0.3 0.5 tangential history 1e4 0.5 rolling constant 0.02"
-
-
-def setup_commands():
-    return [
-        "units lj", "atom_style ellipsoid", "atom_modify map array", "boundary p p f",
-        "comm_modify vel yes", "region box block 0 8 0 8 0 10", "create_box 1 box",
-    ] + continuation_commands() + ["timestep 1e-3"]
-
-
-def continuation_commands():
-    """Everything a restarted input re-specifies (the pair style comes from the file)."""
-    return [
-        "region ins block 0 8 0 8 1.5 6",
-        f"pair_coeff * * {LAW}",
-        f"fix p all pour/ellipsoid {N} 1 8087 region ins size mean 0.7 delta_r 0.3 "
-        "shape 1.5 1.3 density 1 vol 0.1 200 every 1200",
-        "fix g all gravity 1.0 vector 0 0 -1",
-        "fix i all nve/asphere",
-        f"fix w all wall/gran/ellipsoid {LAW} zplane 0 NULL",
-        "compute pk all packing/ellipsoid 0.0 2.0",
-        "thermo_style custom step atoms f_p c_pk[1] c_pk[2]",
-        "thermo 500",
-    ]
+N, HALF, REST, LAW = MID_POUR_N, MID_POUR_HALF, MID_POUR_REST, MID_POUR_LAW
 
 
 def state(lmp):
@@ -63,7 +41,7 @@ def runs(tmp_path_factory):
 
     # uninterrupted
     lmp = h.new_lammps(work, "full")
-    lmp.commands_list(["pair_style granular/ellipsoid"] + [c for c in setup_commands()
+    lmp.commands_list(["pair_style granular/ellipsoid"] + [c for c in mid_pour_commands()
                                                             if "pair_coeff" not in c])
     lmp.command(f"pair_coeff * * {LAW}")
     lmp.command(f"run {HALF + REST}")
@@ -74,7 +52,7 @@ def runs(tmp_path_factory):
 
     # first half, set-up forces, restart file, data file
     lmp = h.new_lammps(work, "first")
-    lmp.commands_list(["pair_style granular/ellipsoid"] + setup_commands())
+    lmp.commands_list(["pair_style granular/ellipsoid"] + mid_pour_commands())
     lmp.command(f"run {HALF}")
     lmp.command("run 0")
     out["before"] = state(lmp)
@@ -94,7 +72,7 @@ def runs(tmp_path_factory):
     lmp = h.new_lammps(work, "second")
     lmp.command(f"read_restart {restart}")
     lmp.command("comm_modify vel yes")
-    lmp.commands_list(continuation_commands())
+    lmp.commands_list(mid_pour_continuation())
     lmp.command("timestep 1e-3")
     lmp.command("run 0")
     out["reread"] = state(lmp)

@@ -12,14 +12,14 @@ import re
 import shutil
 import socket
 import subprocess
-import sys
 import time
 
 import pytest
 import yaml
 
-ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+from conftest import root_dir
+
+ROOT = root_dir()
 DAEMONS = ("munged", "slurmctld", "slurmd", "sbatch", "scontrol", "sinfo")
 pytestmark = pytest.mark.skipif(
     os.geteuid() != 0 or not all(shutil.which(d) for d in DAEMONS),

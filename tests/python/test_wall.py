@@ -6,12 +6,13 @@ import numpy as np
 import pytest
 
 import ed_helpers_pour as h
+import geometry
 
 G = 9.81
 RHO = 2500.0
 
 
-def single_particle(lmp, semi, quat_axis_angle, z0, law, wall="zplane 0 NULL", dt=1e-4):
+def single_particle(lmp, semi, axis_angle, z0, law, wall="zplane 0 NULL", dt=1e-4):
     for c in [
         "units si",
         "atom_style ellipsoid",
@@ -22,7 +23,7 @@ def single_particle(lmp, semi, quat_axis_angle, z0, law, wall="zplane 0 NULL", d
         f"create_atoms 1 single 0 0 {z0}",
         "set atom 1 shape {} {} {}".format(*(2 * np.asarray(semi))),
         f"set atom 1 density {RHO}",
-        "set atom 1 quat {} {} {} {}".format(*quat_axis_angle),
+        "set atom 1 quat {} {} {} {}".format(*axis_angle),
         "pair_style granular/ellipsoid",
         f"pair_coeff * * {law}",
         "fix g all gravity 9.81 vector 0 0 -1",
@@ -66,7 +67,7 @@ def test_ellipsoid_comes_to_rest_on_shortest_axis(tmp_path):
     ke = lmp.get_thermo("c_ke")
     er = lmp.get_thermo("c_er")
     lmp.close()
-    r = h.rotation(snap["quat"][0])
+    r = geometry.rotation(snap["quat"][0])
     assert abs(r[2, 2]) > 0.999, r  # body c axis (shortest) along z
     # resting on the c tip: the Hertz overlap of the shared law, (m g / kn)^(2/3)
     mass = RHO * 4 / 3 * math.pi * np.prod(semi)
@@ -128,7 +129,7 @@ def test_small_pour_settles(tmp_path):
     energy = np.loadtxt(tmp_path / "energy.txt")[:, 1]
     assert inserted == 120 and natoms == 120 and len(snap["id"]) == 120
     c_min = snap["semi"].min()
-    low = np.array([h.lowest_z(q, s, z) for q, s, z in zip(snap["quat"], snap["semi"],
+    low = np.array([geometry.lowest_z(q, s, z) for q, s, z in zip(snap["quat"], snap["semi"],
                                                             snap["z"])])
     assert low.min() > -0.05 * c_min, low.min()
     assert (snap["z"] > 0.0).all()
@@ -182,13 +183,9 @@ def test_history_restart(tmp_path):
     ("hertz/material nosuch zplane 0 NULL", r"unknown material 'nosuch'"),
 ])
 def test_errors(tmp_path, args, pattern):
-    lmp = h.new_lammps(tmp_path)
-    for c in ["units si", "atom_style ellipsoid", "boundary p p f",
-              "region box block 0 1 0 1 0 1", "create_box 1 box"]:
-        lmp.command(c)
-    with pytest.raises(Exception, match=pattern):
-        lmp.command(f"fix w all wall/gran/ellipsoid {args}")
-    lmp.close()
+    h.assert_refused(tmp_path, ["units si", "atom_style ellipsoid", "boundary p p f",
+                                "region box block 0 1 0 1 0 1", "create_box 1 box"],
+                     [f"fix w all wall/gran/ellipsoid {args}"], pattern)
 
 
 def test_error_centre_behind_wall(tmp_path):
