@@ -1,4 +1,5 @@
-"""Robustness at extreme shapes and sizes (issue 9): two-body collisions and small pours.
+"""Robustness at extreme shapes: two-body collisions, bodies created touching or deeply
+overlapping, parallel flat faces; bad input (small pours: test_robustness_pours.py).
 
 Each case asserts the five checks of robust_helpers.assert_robust: every sampled position,
 velocity, force, torque and kinetic energy finite; no atom lost; kinetic energy (translational
@@ -6,21 +7,18 @@ plus rotational) bounded; the largest overlap (pair and wall, sampled from dumps
 the smaller of the two smallest semi-axes) below a stated fraction; and the pair's
 non-convergence count (its end-of-run counter line) at most 1e-6 of its contact evaluations.
 
-The default set runs in well under 3 minutes on a shared 2-core machine. With
-ELLIPSOID_DEP_LONG=1 the collisions use more poses and the pours more particles and steps.
+With ELLIPSOID_DEP_LONG=1 the collisions use more poses.
 doc/robustness.md has the table of the measured numbers (printed by `pytest -s`).
 """
 import math
-import os
 
 import numpy as np
 import pytest
 
 import ed_helpers_pour as h
+import geometry
 import robust_helpers as rb
 
-LONG = os.environ.get("ELLIPSOID_DEP_LONG", "0") not in ("", "0")
-NEAR = 1.0 + 1e-9
 
 # semi-axes (a, b, c) of the shapes used in the collisions
 SHAPES = {
@@ -28,33 +26,17 @@ SHAPES = {
     "disk20": (1.0, 1.0, 0.05),                       # oblate a/c = 20
     "tri20": (1.0, 1.0 / math.sqrt(20), 0.05),        # triaxial a/b = b/c = sqrt(20)
     "tri5": (0.5, 0.25, 0.1),                         # triaxial 1:2:5
-    "nearsphere": (0.3 * NEAR * NEAR, 0.3 * NEAR, 0.3),  # eta = zeta = 1 + 1e-9
+    "nearsphere": (0.3 * rb.NEAR * rb.NEAR, 0.3 * rb.NEAR, 0.3),  # eta = zeta = 1 + 1e-9
     "sphere": (0.3, 0.3, 0.3),
     "big": (1.0, 0.7, 0.5),
     "small": (0.1, 0.07, 0.05),                       # 10:1 to "big"
     "smallsphere": (0.05, 0.05, 0.05),
 }
 
-RESULTS = []  # (case, numbers) collected for the printed table
-
-
-def report(case, res):
-    c = res["counters"]
-    RESULTS.append((case, res["overlap_pair"], res["overlap_wall"], res["ke_max"],
-                    c["contacts"], c["not_converged"], c["mean_iterations"]))
-    print(f"\nROBUST {case}: overlap/c_min pair {res['overlap_pair']:.3g} wall "
-          f"{res['overlap_wall']:.3g}, ke_max {res['ke_max']:.4g}, contacts {c['contacts']}, "
-          f"not converged {c['not_converged']}, mean iterations {c['mean_iterations']}")
-
-
-def mass_of(semi, rho=1.0):
-    return rho * 4.0 / 3.0 * math.pi * float(np.prod(semi))
-
-
 def hertz_for(semi1, semi2, v, peak=0.02, restitution_k=0.1):
     """kn giving a head-on Hertz peak overlap of `peak` x the smaller smallest semi-axis at
     relative speed v, a moderate damping K, and a time step of 1/60 of the contact time."""
-    m1, m2 = mass_of(semi1), mass_of(semi2)
+    m1, m2 = rb.mass_of(semi1), rb.mass_of(semi2)
     mstar = m1 * m2 / (m1 + m2)
     cmin = min(min(semi1), min(semi2))
     xi = peak * cmin
@@ -82,7 +64,7 @@ def two_body_commands(semi1, q1, x1, v1, w1, semi2, q2, x2, v2, w2, kn, damping,
             "set atom {} shape {:.17g} {:.17g} {:.17g}".format(k, *(2 * np.asarray(semi))),
             f"set atom {k} density 1.0",
             "set atom {} quat/random 1".format(k) if q is None else
-            "set atom {} quat {:.17g} {:.17g} {:.17g} {:.17g}".format(k, *axis_angle(q)),
+            "set atom {} quat {:.17g} {:.17g} {:.17g} {:.17g}".format(k, *geometry.axis_angle(q)),
             "set atom {} vx {:.17g} vy {:.17g} vz {:.17g}".format(k, *v),
         ]
         if w is not None:
@@ -97,29 +79,13 @@ def two_body_commands(semi1, q1, x1, v1, w1, semi2, q2, x2, v2, w2, kn, damping,
     return lines
 
 
-def axis_angle(q):
-    """(w, x, y, z) unit quaternion -> the axis-angle words of `set quat` (degrees)."""
-    w, x, y, z = np.asarray(q, float) / np.linalg.norm(q)
-    angle = 2 * math.degrees(math.acos(max(-1.0, min(1.0, w))))
-    axis = np.array([x, y, z])
-    if np.linalg.norm(axis) < 1e-300:
-        return (0.0, 0.0, 1.0, 0.0)
-    axis /= np.linalg.norm(axis)
-    return (*axis, angle)
-
-
 def spin(q, semi, omega):
     """Angular momentum (space frame) of a body of density 1 turning at omega."""
     a, b, c = semi
-    m = mass_of(semi)
+    m = rb.mass_of(semi)
     inertia = m / 5.0 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
-    r = h.rotation(q)
+    r = geometry.rotation(q)
     return r @ inertia @ r.T @ omega
-
-
-def random_quat(rng):
-    q = rng.normal(size=4)
-    return q / np.linalg.norm(q)
 
 
 def run_two_body(tmp_path, name, lines, steps, every):
@@ -140,7 +106,7 @@ COLLISIONS = [
     ("nearsphere", "sphere"), ("sphere", "sphere"), ("big", "small"),
     ("big", "smallsphere"), ("needle20", "small"),
 ]
-POSES = 6 if LONG else 2
+POSES = 6 if rb.LONG else 2
 
 
 @pytest.mark.parametrize("pair", COLLISIONS, ids=["-".join(p) for p in COLLISIONS])
@@ -156,15 +122,15 @@ def test_collision(tmp_path, pair):
     for pose in range(3 * POSES):
         if hits == POSES:
             break
-        q1, q2 = random_quat(rng), random_quat(rng)
+        q1, q2 = geometry.random_quats(rng, 2)
         u = rng.normal(size=3)
         u /= np.linalg.norm(u)
         perp = np.cross(u, rng.normal(size=3))
         perp /= np.linalg.norm(perp)
-        dist = rb.touch_distance(q1, s1, q2, s2, u) + 2.0 * cmin
+        dist = geometry.touch_distance(q1, s1, q2, s2, u) + 2.0 * cmin
         x1 = -0.5 * dist * u
         x2 = 0.5 * dist * u + 0.2 * cmin * perp
-        m1, m2 = mass_of(s1), mass_of(s2)
+        m1, m2 = rb.mass_of(s1), rb.mass_of(s2)
         v1 = m2 / (m1 + m2) * u            # centre of mass at rest, relative speed 1
         v2 = -m1 / (m1 + m2) * u
         w1 = spin(q1, s1, 0.3 / max(s1) * rng.normal(size=3))   # some spin
@@ -180,7 +146,7 @@ def test_collision(tmp_path, pair):
         rb.assert_robust(res, 2, ke0 * 1.001, 0.10, min_contacts=0, label=f"{pair} pose {pose}")
         if res["counters"]["contacts"] > 0:
             hits += 1
-            report(f"collision {pair[0]}-{pair[1]} pose {pose}", res)
+            rb.report(f"collision {pair[0]}-{pair[1]} pose {pose}", res)
     assert hits == POSES, f"only {hits} of {POSES} poses collided"
 
 
@@ -192,11 +158,11 @@ def aligned_pair_commands(s1, s2, axis, overlap, v=0.0, tilt=0.0, kn=None, dampi
     dist = s1[axis] + s2[axis] - overlap
     ident = np.array([1.0, 0.0, 0.0, 0.0])
     # a tilt about an axis perpendicular to u (nearly parallel faces)
-    q2 = ident if tilt == 0.0 else rb.quat_axis_angle(np.eye(3)[(axis + 1) % 3],
+    q2 = ident if tilt == 0.0 else geometry.quat_axis_angle(np.eye(3)[(axis + 1) % 3],
                                                       math.degrees(tilt))
     if kn is None:
         kn, damping, dt, _ = hertz_for(s1, s2, max(v, 0.1))
-    m1, m2 = mass_of(s1), mass_of(s2)
+    m1, m2 = rb.mass_of(s1), rb.mass_of(s2)
     return two_body_commands(s1, ident, -0.5 * dist * u, m2 / (m1 + m2) * v * u, None,
                              s2, q2, 0.5 * dist * u + lateral * np.eye(3)[(axis + 2) % 3], -m1 / (m1 + m2) * v * u, None,
                              kn, damping, dt), kn, dt
@@ -214,7 +180,7 @@ def test_created_touching(tmp_path, shape, axis, rel):
     overlap = rel * cmin
     lines, kn, dt = aligned_pair_commands(s, s, axis, overlap)
     res = run_two_body(tmp_path, "touch", lines, 400, 20)
-    report(f"touching {shape} axis {axis} overlap {rel:g}", res)
+    rb.report(f"touching {shape} axis {axis} overlap {rel:g}", res)
     elastic = 0.4 * kn * max(overlap, 0.0) ** 2.5
     rb.assert_robust(res, 2, 1.01 * elastic + 1e-300, 2e-6, min_contacts=0,
                      label=f"{shape} {axis} {rel}")
@@ -241,7 +207,7 @@ def test_deep_overlap_created(tmp_path, shape, axis):
     elastic = 0.4 * kn * overlap ** 2.5
     res = run_two_body(tmp_path, "deep", lines, 1500, 5)
     first = rb.read_dump_frames(str(tmp_path / "contacts.dump"))[0][1][0, 2] / cmin
-    report(f"deep overlap {first:.4f} {shape} axis {axis}", res)
+    rb.report(f"deep overlap {first:.4f} {shape} axis {axis}", res)
     rb.assert_robust(res, 2, elastic, 0.3 * 1.01, label=f"{shape} {axis}")
     assert res["overlap_pair"] <= first * (1 + 1e-6)
     assert res["ke_max"] > 0.05 * elastic  # the overlap really was deep and was resolved
@@ -260,84 +226,9 @@ def test_parallel_faces(tmp_path, tilt, offset):
                                           damping=damping, dt=dt, lateral=offset)
     steps = int(0.3 / dt)
     res = run_two_body(tmp_path, "faces", lines, steps, max(1, steps // 400))
-    report(f"parallel faces tilt {tilt:g} offset {offset}", res)
+    rb.report(f"parallel faces tilt {tilt:g} offset {offset}", res)
     ke0 = res["thermo"][0, 2] + res["thermo"][0, 3]
     rb.assert_robust(res, 2, ke0 * 1.001, 0.10, label=f"tilt {tilt} offset {offset}")
-
-
-# ---------------------------------------------------------------------------------------
-# small pours (lj units, g = 1, density 1, mean size r = (abc)^(1/3) = 1 unless stated)
-
-E_MAT = 2.0e6       # hertz/material: peak overlap ~2 % of r for a sphere hitting at v ~ 3.5
-E_STIFF = 1.2e7     # for a/c = 20: rims and tips have small curvature radii (softer contacts)
-POURS = {
-    # name: (pour keywords, N, smallest semi-axis the pour can make)
-    "needle20": ("size 1 1 shape 20 1", 1.0 / 20 ** (1 / 3)),
-    "disk20": ("size 1 1 shape 1 20", 1.0 / 400 ** (1 / 3)),
-    "tri20": (f"size 1 1 shape {20 ** 0.5:.17g} {20 ** 0.5:.17g}", 1.0 / 20 ** 0.5),
-    "nearsphere": (f"size 1 1 shape {NEAR:.17g} {NEAR:.17g}", 1.0 / NEAR),
-    "sphere": ("size 1 1 shape 1 1", 1.0),
-    "ratio10": ("size 0.2 2 shape 1.4 1.2", 0.2 / (1.4 * 1.44) ** (1 / 3)),
-    "delta_r0.9": ("size mean 1 delta_r 0.9 shape 1.4 1.2", 0.1 / (1.4 * 1.44) ** (1 / 3)),
-}
-
-
-def pour_case(tmp_path, name, n, extra_steps):
-    words, cmin = POURS[name]
-    big = 2.0 * (2.0 if name == "ratio10" else 1.9 if name == "delta_r0.9" else 1.0) * \
-        (20 ** (2 / 3) if "20" in name else 1.5)        # largest diameter, roughly
-    width = max(12.0, 2.2 * big)
-    # the pour keeps each bounding sphere inside the region in z: make it tall enough
-    bottom = 0.5
-    top = bottom + 6.0 + big
-    vmax = math.sqrt(2.0 * top)
-    young = E_STIFF if "20" in name else E_MAT
-    peak = 0.03 * (young / E_MAT) ** -0.4       # design peak overlap / c_min
-    # 20 steps per contact of the thinnest body at the largest speed (tc ~ 3 x peak / v)
-    dt = min(2e-3, 3.0 * peak * cmin / vmax / 20.0)
-    steps = int(math.sqrt(2.0 * top) / dt) + extra_steps
-    work = str(tmp_path)
-    lmp = h.new_lammps(work, name)
-    law = f"hertz/material {young:g} 0.3 0.5 tangential history 1e4 0.5 rolling constant 0.02"
-    for c in [
-        "units lj", "atom_style ellipsoid", "atom_modify map array", "boundary p p f",
-        "comm_modify vel yes", f"region box block 0 {width} 0 {width} 0 {top + 2 * big}",
-        "create_box 1 box", f"region ins block 0 {width} 0 {width} {bottom} {top}",
-        "pair_style granular/ellipsoid", f"pair_coeff * * {law}",
-        f"fix p all pour/ellipsoid {n} 1 7151 region ins {words} density 1 vol 0.3 400 "
-        f"every {steps // 4}",
-        "fix g all gravity 1.0 vector 0 0 -1", "fix i all nve/asphere",
-        f"fix w all wall/gran/ellipsoid {law} zplane 0 NULL",
-        f"timestep {dt:.6g}",
-    ]:
-        lmp.command(c)
-    rb.instrument(lmp, work, max(1, steps // 200))
-    lmp.command(f"run {steps}")
-    res = rb.analyse(lmp, work, wall_z=0.0)
-    inserted = lmp.extract_fix("p", 0, 1, 0)
-    lmp.close()
-    masses = [mass_of(0.5 * row[17:20]) for row in res["frames"][-1][1]]
-    res["ke_bound"] = sum(masses) * 1.0 * top   # the potential energy of the region top
-    res["inserted"] = inserted
-    res["steps"], res["dt"] = steps, dt
-    return res
-
-
-POUR_N = 100 if LONG else 50
-
-
-@pytest.mark.parametrize("name", list(POURS))
-def test_small_pour(tmp_path, name):
-    """50 particles (100 with ELLIPSOID_DEP_LONG) poured onto the floor wall (the region
-    holds them all in the first batch; the run lasts the fall time from the region top):
-    every inserted particle is kept, the kinetic energy never exceeds the potential energy
-    of the region top, overlaps stay below 10 % of the smaller body's smallest semi-axis."""
-    res = pour_case(tmp_path, name, POUR_N, 2000 if LONG else 0)
-    report(f"pour {name} n {res['inserted']:.0f} steps {res['steps']} dt {res['dt']:.3g} "
-           f"ke bound {res['ke_bound']:.4g}", res)
-    n = int(res["inserted"])
-    assert n >= POUR_N // 2
-    rb.assert_robust(res, n, res["ke_bound"], 0.10, min_contacts=10, label=f"pour {name}")
 
 
 # ---------------------------------------------------------------------------------------
@@ -347,16 +238,6 @@ BAD_BASE = ["units si", "atom_style ellipsoid", "boundary p p f",
             "region box block 0 1 0 1 0 1", "create_box 1 box", "comm_modify vel yes",
             "region ins block 0 1 0 1 0.5 1", "region big block 0 1 0 1 0.5 1.5",
             "region sph sphere 0.5 0.5 0.5 0.2", "region outside block 0 1 0 1 0.5 1 side out"]
-
-
-def raises(tmp_path, commands, pattern, base=BAD_BASE):
-    lmp = h.new_lammps(tmp_path)
-    try:
-        with pytest.raises(Exception, match=pattern):
-            for c in base + commands:
-                lmp.command(c)
-    finally:
-        lmp.close()
 
 
 @pytest.mark.parametrize("args,pattern", [
@@ -380,12 +261,12 @@ def raises(tmp_path, commands, pattern, base=BAD_BASE):
     ("10 1 5 region big", r"region big extends outside the simulation box"),
     ("10 1 5 region sph", r"region sph must be a block or a cylinder"),
     ("10 1 5 region outside", r"region outside"),
-    # sizes whose masses underflow gave NaN velocities before this check (issue 9)
+    # sizes whose masses underflow (the velocities would be NaN)
     ("10 1 5 region ins size 1e-300 1e-300 every 1", r"not representable"),
     ("10 1 5 region ins size 1e-110 1e-110 every 1", r"not representable"),
 ])
 def test_pour_bad_input(tmp_path, args, pattern):
-    raises(tmp_path, [f"fix p all pour/ellipsoid {args}"], pattern)
+    h.assert_refused(tmp_path, BAD_BASE, [f"fix p all pour/ellipsoid {args}"], pattern)
 
 
 @pytest.mark.parametrize("extra,pattern", [
@@ -399,10 +280,10 @@ def test_pour_bad_input(tmp_path, args, pattern):
       "fix g all gravity 5 vector 0 0 -1"], r"Gravity changed"),
 ])
 def test_pour_bad_run_setup(tmp_path, extra, pattern):
-    raises(tmp_path, ["pair_style granular/ellipsoid", "pair_coeff * * hertz 1e5 10",
-                      "fix i all nve/asphere", "timestep 1e-5",
-                      "fix p all pour/ellipsoid 10 1 5 region ins size 0.01 0.01"]
-           + extra + ["run 1"], pattern)
+    h.assert_refused(tmp_path, BAD_BASE + [
+        "pair_style granular/ellipsoid", "pair_coeff * * hertz 1e5 10", "fix i all nve/asphere",
+        "timestep 1e-5", "fix p all pour/ellipsoid 10 1 5 region ins size 0.01 0.01"],
+        extra + ["run 1"], pattern)
 
 
 @pytest.mark.parametrize("args,pattern", [
@@ -421,13 +302,13 @@ def test_pour_bad_run_setup(tmp_path, extra, pattern):
      r"keyword 'rolling'"),
 ])
 def test_wall_bad_input(tmp_path, args, pattern):
-    raises(tmp_path, [f"fix w all wall/gran/ellipsoid {args}"], pattern)
+    h.assert_refused(tmp_path, BAD_BASE, [f"fix w all wall/gran/ellipsoid {args}"], pattern)
 
 
 def test_wall_needs_ellipsoid_atom_style(tmp_path):
     base = [c.replace("atom_style ellipsoid", "atom_style sphere") for c in BAD_BASE]
-    raises(tmp_path, ["fix w all wall/gran/ellipsoid hertz 1e4 10 zplane 0 NULL"],
-           r"requires atom_style ellipsoid", base=base)
+    h.assert_refused(tmp_path, base, ["fix w all wall/gran/ellipsoid hertz 1e4 10 zplane 0 NULL"],
+                     r"requires atom_style ellipsoid")
 
 
 def test_wall_deep_overlap_warns(tmp_path):

@@ -1,0 +1,43 @@
+"""The default deposit end to end at a tiny size: tools/deposit_run.py on 2 MPI ranks (split
+in x and y) pours 40 particles of examples/deposit/in.deposit, stops at rest and writes its
+files: the log, packing.dat, the histograms, the dump (semi-axes and quaternions) and the
+three PNGs (dump image and matplotlib). The rest criterion is 1e-2 m g d per particle (the
+tiny study's), which the checks here do not depend on."""
+import os
+
+from study_helpers import PY, TOOLS, assert_image, run
+
+
+def test_default_deposit(tmp_path):
+    out = tmp_path / "dep"
+    text = run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "2", "--N", "40",
+                "--ketol", "1e-2", "--out", str(out), "--quiet"], str(tmp_path), 600)
+    assert "volume fraction phi" in text
+    for name in ("log.lammps", "packing.dat", "contact_histo.dat", "orient_histo.dat",
+                 "deposit.dump"):
+        assert (out / name).stat().st_size > 0, name
+    for name in ("deposit.png", "contact_histo.png", "orient_histo.png"):
+        assert_image(str(out / name))
+    pk = {}
+    for line in open(out / "packing.dat"):
+        if not line.startswith("#"):
+            k, v = line.split(None, 1)
+            pk[k] = v.strip()
+    # 40 particles make a deposit about one diameter high: the measuring slab (one diameter
+    # above the ground, two below the surface) may be empty, so only sanity is checked
+    assert 0.0 <= float(pk["phi"]) < 0.8
+    assert int(float(pk["steps"])) > 0
+    # the dump holds 40 particles with semi-axes and quaternions
+    lines = open(out / "deposit.dump").read().splitlines()
+    assert lines[3].strip() == "40"
+    cols = lines[8].split()[2:]
+    assert cols[:9] == ["id", "type", "x", "y", "z", "quatw", "quati", "quatj", "quatk"]
+    assert cols[9:12] == ["semi_a_x", "semi_a_y", "semi_a_z"]
+    row = [float(x) for x in lines[9].split()]
+    q = row[5:9]
+    assert abs(sum(x * x for x in q) - 1.0) < 1e-6
+    a, b, c = row[9:12]
+    assert a >= b >= c > 0    # eta = 1.4, zeta = 1.8: semi-axes a > b > c along x, y, z
+    assert abs(a / b - 1.4) < 1e-6 and abs(b / c - 1.8) < 1e-6
+    # the tall box is split in x and y only, so both ranks hold particles
+    assert "2 by 1 by 1 MPI processor grid" in open(out / "log.lammps").read()
