@@ -1,0 +1,90 @@
+"""Input fuzzing of every style's command lines (engine and outcomes: fuzz_inputs.py).
+
+A fixed seed and a small count by default. Long mode: ELLIPSOID_DEP_FUZZ_COUNT=N (and
+optionally ELLIPSOID_DEP_FUZZ_SEED, ELLIPSOID_DEP_FUZZ_JOBS, ELLIPSOID_DEP_FUZZ_TIMEOUT),
+`pytest -s` prints the tally and every finding.
+
+A mutant passes when LAMMPS either runs it to a finite state or stops with an ERROR; a crash,
+a sanitizer report, a hang or a non-finite state fails the test.
+"""
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import pytest
+
+import fuzz_inputs as fz
+from conftest import subprocess_env
+
+SEED = int(os.environ.get("ELLIPSOID_DEP_FUZZ_SEED", "20261201"))
+COUNT = int(os.environ.get("ELLIPSOID_DEP_FUZZ_COUNT", "48"))
+JOBS = int(os.environ.get("ELLIPSOID_DEP_FUZZ_JOBS", "2"))
+TIMEOUT = float(os.environ.get("ELLIPSOID_DEP_FUZZ_TIMEOUT", "60"))
+
+# Mutants that fail through a bug in a file being restructured elsewhere: key -> the bug.
+# Each must still fail (a fixed one is reported so it can be taken off this list).
+KNOWN_FAILURES = {
+}
+
+# Mutants that found a bug fixed here: they must run clean for good.
+REGRESSIONS = [
+]
+
+
+def lmp_binary():
+    return os.environ["ELLIPSOID_DEP_LMP"]
+
+
+def run_all(cases):
+    env = subprocess_env()
+
+    def one(case):
+        name, k, line = case[:3]
+        return case, fz.run_mutant(lmp_binary(), name, k, line, TIMEOUT, env)
+
+    with ThreadPoolExecutor(max_workers=JOBS) as pool:
+        return list(pool.map(one, cases))
+
+
+def check(results):
+    tally, bad, fixed = {}, [], []
+    for case, (outcome, detail) in results:
+        name, k, line = case[:3]
+        tally[outcome] = tally.get(outcome, 0) + 1
+        known = fz.key(name, k, line) in KNOWN_FAILURES
+        if outcome in fz.BAD and not known:
+            bad.append(f"{outcome}: {fz.key(name, k, line)}\n    {detail}")
+        elif known and outcome not in fz.BAD:
+            fixed.append(fz.key(name, k, line))
+        if outcome in fz.BAD:
+            print(f"FINDING {outcome}{' (known)' if known else ''}: {fz.key(name, k, line)}\n"
+                  f"    {detail}")
+    print(f"fuzz: {len(results)} mutants, " +
+          ", ".join(f"{n} {o}" for o, n in sorted(tally.items())))
+    assert not bad, "\n".join(bad)
+    assert not fixed, "known failures that now pass (remove them from KNOWN_FAILURES): " + \
+        "; ".join(fixed)
+    return tally
+
+
+@pytest.mark.parametrize("name", sorted(fz.BASES))
+def test_base_inputs_run_clean(name):
+    """The unmutated inputs run to a finite state: every mutant differs from a clean run."""
+    k = fz.targets(fz.BASES[name])[0]
+    line = fz.base_lines(fz.BASES[name])[k]
+    outcome, detail = fz.run_mutant(lmp_binary(), name, k, line, TIMEOUT, subprocess_env())
+    assert outcome == "ok", detail
+
+
+def test_mutants():
+    cases = list(fz.mutants(SEED, COUNT))
+    assert len(cases) == COUNT
+    tally = check(run_all(cases))
+    # the mix is meaningful: some mutants are refused and some still run
+    assert tally.get("error", 0) > 0 and tally.get("ok", 0) > 0, tally
+
+
+def test_known_failures_and_regressions():
+    cases = [fz.parse_key(entry) for entry in list(KNOWN_FAILURES) + REGRESSIONS]
+    if not cases:
+        pytest.skip("no known failures or regressions listed")
+    check(run_all(cases))
