@@ -9,7 +9,7 @@ space limit, then writes every atom's state to a dump.
 
 Outcomes:
   ok         the run finished; positions, velocities, forces, torques and every printed
-             thermo value (the computes) are finite
+             value of the package's computes are finite
   error      LAMMPS stopped with an ERROR message and a normal exit code (the correct
              answer to bad input)
   crash      killed by a signal, or a non-zero exit without an ERROR message
@@ -217,16 +217,17 @@ def _finite_dump(path):
 
 
 def _nonfinite_thermo(out):
-    """The first thermo row with a non-finite number (between a 'Step' header and 'Loop')."""
-    inside = False
+    """The first thermo row with a non-finite value of a compute (c_ columns; LAMMPS's own
+    ke overflows in si units once sum m v^2 / k_B does, which is no fault of the package)."""
+    columns = []
     for row in out.splitlines():
         words = row.split()
         if words[:1] == ["Step"]:
-            inside = True
+            columns = [k for k, w in enumerate(words) if w.startswith("c_")]
         elif words[:1] == ["Loop"]:
-            inside = False
-        elif inside and words and words[0].isdigit():
-            if any(w.lower() in ("nan", "-nan", "inf", "-inf") for w in words):
+            columns = []
+        elif columns and words and words[0].isdigit() and len(words) > max(columns):
+            if any(words[k].lower() in ("nan", "-nan", "inf", "-inf") for k in columns):
                 return row
     return ""
 

@@ -20,13 +20,24 @@ COUNT = int(os.environ.get("ELLIPSOID_DEP_FUZZ_COUNT", "48"))
 JOBS = int(os.environ.get("ELLIPSOID_DEP_FUZZ_JOBS", "2"))
 TIMEOUT = float(os.environ.get("ELLIPSOID_DEP_FUZZ_TIMEOUT", "60"))
 
-# Mutants that fail through a bug in a file being restructured elsewhere: key -> the bug.
-# Each must still fail (a fixed one is reported so it can be taken off this list).
+# Mutants that fail through a bug outside this package's reach or in a file being
+# restructured elsewhere: key -> the bug. Each must still fail (one that passes fails the
+# test, so it is taken off this list once its bug is fixed).
 KNOWN_FAILURES = {
+    # LAMMPS itself (utils::bounds, used by every pair_coeff): std::stol's out_of_range
+    # escapes as "Exception: stol" with no ERROR; `pair_style lj/cut` does the same.
+    "lj:19: pair_coeff * 9223372036854775808 * hertz 1e4 50 tangential history 1e3 0.5 "
+    "rolling constant 0.02": "LAMMPS utils::bounds, type range beyond long",
+    "si:16: pair_coeff * 9223372036854775808 hertz/material glass tangential history 1e4 0.4":
+        "LAMMPS utils::bounds, type range beyond long",
 }
 
-# Mutants that found a bug fixed here: they must run clean for good.
+# Mutants of the long runs that must keep passing (a finding that was not the package's
+# fault but must stay classified right).
 REGRESSIONS = [
+    # LAMMPS's thermo ke overflows (si units, k_B = 1.38e-23); state and computes finite
+    "si:21: fix p all pour/ellipsoid 4 2 977 region ins size 0.0015 0.0025 shape 1.3 1.1 "
+    "density 2.5000000000000002e+303 vol 0.05 40",
 ]
 
 
