@@ -45,6 +45,9 @@ namespace {
   const Range NON_NEGATIVE = {0.0, INF, true, false};
   const Range POISSON_RATIO = {-1.0, 0.5, false, false};
   const Range RESTITUTION = {0.0, 1.0, false, true};
+  // rolling resistance mu_r: its torque arm mu_r R* cannot exceed the contact's radius R*
+  // (beyond, one step's torque spins a particle at rest past what its orientation survives)
+  const Range ROLLING_ARM = {0.0, 1.0, true, true};
 
   enum class Mix {
     Geometric,         // sqrt(a b)
@@ -90,7 +93,7 @@ namespace {
 
   const Choice<R> ROLLING_CHOICES[] = {{R::Kind::None, "none"}, {R::Kind::Constant, "constant"}};
   const Row<R> ROLLING_ROWS[] = {
-      {R::Kind::Constant, "mu_r", &R::mu_roll, NON_NEGATIVE, Mix::Geometric},
+      {R::Kind::Constant, "mu_r", &R::mu_roll, ROLLING_ARM, Mix::Geometric},
   };
 
   // One sub-model's table with its keyword ("" for the normal model, which has none).
