@@ -42,14 +42,14 @@ MAX_CHUNKS = 20
 KE_REST = 1e-5        # kinetic energy per particle at rest (m g d ~ 1 here)
 CONTINUE = 1000       # steps of the continued runs
 # Set-up, newton on: the same contacts summed in another order, ~1e-16 of each force;
-# measured 8e-17. Newton off evaluates a pair that crosses a rank or the periodic boundary
+# measured 8e-17 .. 1e-16. Newton off evaluates a pair that crosses a rank or the periodic boundary
 # from both sides: the contact iteration converges to 1e-12 relative on the contact points
 # from two starts, and an overlap ~1e-3 of the size turns that into ~1e-9 on a force;
 # measured 2e-12 .. 2e-11.
 SETUP_TOL = {"on": 1e-13, "off": 1e-9}
 # Continued: those differences grown through stiff contacts and friction springs over
-# CONTINUE steps: measured positions 4e-14 .. 8e-14 (sizes ~1), forces 1e-11 .. 2e-11 of
-# the largest; the bounds are two decades above.
+# CONTINUE steps: measured positions 4e-14 .. 2.2e-13 (sizes ~1), forces 1e-11 .. 2e-11 of
+# the largest; the bounds are 50 and 500 times that.
 POS_TOL = 1e-11
 FORCE_TOL = 1e-8
 
