@@ -18,7 +18,8 @@ Outcomes:
   crash      killed by a signal, or a non-zero exit without an ERROR message
   sanitizer  an AddressSanitizer / UndefinedBehaviorSanitizer report with a frame in the
              package (sanitized build)
-  host       such a report whose stacks never enter the package (listed, not a failure)
+  host       such a report whose stacks never enter the package, or a known crash of
+             LAMMPS itself (HOST_CRASH) (listed, not a failure)
   hang       the time limit was reached
   nonfinite  the run finished with a non-finite value in the state or the thermo output
 """
@@ -243,6 +244,9 @@ def _nonfinite_thermo(out):
 
 SANITIZER = re.compile(r"AddressSanitizer|LeakSanitizer|runtime error:")
 PACKAGE_FRAME = re.compile(r"ellipsoiddepplugin\.so|ELLIPSOID_DEP/")
+# Crashes of LAMMPS itself that the package's lines reach: utils::bounds (every pair_coeff's
+# type range) lets std::stol's out_of_range escape; `pair_style lj/cut` does the same.
+HOST_CRASH = re.compile(r"^Exception: stol$", re.M)
 
 
 def run_mutant(lmp, name, k, line, timeout=60.0, env=None):
@@ -269,6 +273,9 @@ def run_mutant(lmp, name, k, line, timeout=60.0, env=None):
         if proc.returncode < 0:
             return "crash", f"signal {signal.Signals(-proc.returncode).name}"
         error = re.search(r"^ERROR.*$", out, re.M)
+        host = HOST_CRASH.search(out)
+        if host:
+            return "host", host.group(0)
         if proc.returncode != 0:
             if error and proc.returncode == 1:
                 return "error", error.group(0)

@@ -8,6 +8,7 @@ A mutant passes when LAMMPS either runs it to a finite state or stops with an ER
 a sanitizer report, a hang or a non-finite state fails the test.
 """
 import os
+import subprocess
 from concurrent.futures import ThreadPoolExecutor
 
 import pytest
@@ -20,16 +21,10 @@ COUNT = int(os.environ.get("ELLIPSOID_DEP_FUZZ_COUNT", "48"))
 JOBS = int(os.environ.get("ELLIPSOID_DEP_FUZZ_JOBS", "2"))
 TIMEOUT = float(os.environ.get("ELLIPSOID_DEP_FUZZ_TIMEOUT", "60"))
 
-# Mutants that fail through a bug outside this package's reach or in a file being
-# restructured elsewhere: key -> the bug. Each must still fail (one that passes fails the
-# test, so it is taken off this list once its bug is fixed).
+# Mutants that fail through a bug in a file being restructured elsewhere: key -> the bug.
+# Each must still fail (one that passes fails the test, so it is taken off this list once
+# its bug is fixed). Crashes of LAMMPS itself are fuzz_inputs.HOST_CRASH instead.
 KNOWN_FAILURES = {
-    # LAMMPS itself (utils::bounds, used by every pair_coeff): std::stol's out_of_range
-    # escapes as "Exception: stol" with no ERROR; `pair_style lj/cut` does the same.
-    "lj:19: pair_coeff * 9223372036854775808 * hertz 1e4 50 tangential history 1e3 0.5 "
-    "rolling constant 0.02": "LAMMPS utils::bounds, type range beyond long",
-    "si:16: pair_coeff * 9223372036854775808 hertz/material glass tangential history 1e4 0.4":
-        "LAMMPS utils::bounds, type range beyond long",
 }
 
 # Mutants of the long runs that must keep passing: a bug fixed, or a finding that was not
@@ -114,3 +109,22 @@ def test_rolling_resistance_bounded():
     assert outcome == "error" and "rolling constant mu_r must be in [0, 1]" in detail, detail
     at_limit = line.replace("2e+301", "1")
     assert fz.run_mutant(lmp_binary(), name, k, at_limit, TIMEOUT, subprocess_env())[0] == "ok"
+
+
+STOL_MUTANT = ("lj:19: pair_coeff * 9223372036854775808 * hertz 1e4 50 tangential history 1e3 "
+               "0.5 rolling constant 0.02")
+
+
+def test_lammps_own_crash_is_host(tmp_path):
+    """A type range beyond long crashes LAMMPS's utils::bounds for any pair style (here
+    lj/cut, no package involved); the fuzzer names that outcome 'host'."""
+    inp = tmp_path / "in.stol"
+    inp.write_text("units lj\natom_style atomic\nregion box block 0 4 0 4 0 4\n"
+                   "create_box 2 box\npair_style lj/cut 2.5\n"
+                   "pair_coeff * 9223372036854775808 1 1\n")
+    proc = subprocess.run([lmp_binary(), "-in", str(inp), "-log", "none", "-nocite"],
+                          capture_output=True, text=True, env=subprocess_env())
+    out = proc.stdout + proc.stderr
+    assert fz.HOST_CRASH.search(out), out
+    name, k, line = fz.parse_key(STOL_MUTANT)
+    assert fz.run_mutant(lmp_binary(), name, k, line, TIMEOUT, subprocess_env())[0] == "host"
