@@ -32,8 +32,9 @@ import signal
 import subprocess
 import tempfile
 
-# Lines starting with '@' are fuzz targets (the package's commands); '{dump}' is the path
-# of the final dump. The thermo line prints every compute's first values.
+# Lines starting with '@' are fuzz targets (the package's commands). The thermo line prints
+# every compute's first values; FINAL (run, then the state at full precision into {dump})
+# follows every input.
 LJ_BASE = """
 units lj
 atom_style ellipsoid
@@ -71,9 +72,6 @@ thermo_style custom step atoms ke c_pk[1] c_pk[3] c_pe[1] c_ch[1] c_cz[7] c_oh[1
 thermo_modify lost error
 thermo 50
 timestep 1e-3
-compute q all property/atom quatw quati quatj quatk
-run 150
-write_dump all custom {dump} id x y z vx vy vz fx fy fz tqx tqy tqz angmomx angmomy angmomz c_q[*] modify format float %.17g
 """
 
 SI_BASE = """
@@ -109,9 +107,12 @@ thermo_style custom step atoms ke c_pk[1] c_pa[1] c_ch[1] c_oh[1] c_pp[2][2]
 thermo_modify lost error
 thermo 50
 timestep 5e-7
-compute q all property/atom quatw quati quatj quatk
+"""
+
+FINAL = """compute q all property/atom quatw quati quatj quatk
 run 150
-write_dump all custom {dump} id x y z vx vy vz fx fy fz tqx tqy tqz angmomx angmomy angmomz c_q[*] modify format float %.17g
+write_dump all custom {dump} id x y z vx vy vz fx fy fz tqx tqy tqz angmomx angmomy angmomz &
+  c_q[*] modify format float %.17g
 """
 
 BASES = {"lj": LJ_BASE, "si": SI_BASE}
@@ -206,7 +207,7 @@ def mutants(seed, count):
 def mutant_input(name, k, line, dump):
     lines = base_lines(BASES[name])
     lines[k] = line
-    return "\n".join(lines).replace("{dump}", dump) + "\n"
+    return "\n".join(lines) + "\n" + FINAL.replace("{dump}", dump)
 
 
 def _limit_memory():

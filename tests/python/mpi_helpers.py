@@ -6,6 +6,7 @@ are reduced on every rank, so each rank compares its own serial result with the 
 """
 import os
 import sys
+import tempfile
 
 from lammps import lammps
 
@@ -42,3 +43,13 @@ def finish(lmp, failures, success):
         sys.exit(1)
     if rank == 0:
         print(success, flush=True)
+
+
+def job_folder(prefix):
+    """A scratch folder of the same name on every rank of one MPI job (the job's Open MPI /
+    PMIx namespace is shared by its ranks)."""
+    job = os.environ.get("PMIX_NAMESPACE", os.environ.get("OMPI_MCA_ess_base_jobid",
+                                                          str(os.getppid())))
+    work = os.path.join(tempfile.gettempdir(), prefix + job.replace("/", "_"))
+    os.makedirs(work, exist_ok=True)
+    return work

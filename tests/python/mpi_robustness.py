@@ -16,7 +16,6 @@ Checks:
 """
 import os
 import sys
-import tempfile
 
 import numpy as np
 
@@ -47,12 +46,7 @@ def pour(lmp, workfile):
 
 def main():
     nprocs = mpi.world_size()
-    # the same file name on every rank: the job's namespace (Open MPI / PMIx) is shared
-    job = os.environ.get("PMIX_NAMESPACE", os.environ.get("OMPI_MCA_ess_base_jobid",
-                                                          str(os.getppid())))
-    work = os.path.join(tempfile.gettempdir(), "mpi_robustness_" + job.replace("/", "_"))
-    os.makedirs(work, exist_ok=True)
-    restart = os.path.join(work, "par.restart")
+    restart = os.path.join(mpi.job_folder("mpi_robustness_"), "par.restart")
     failures = []
 
     par = mpi.parallel()
