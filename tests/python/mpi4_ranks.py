@@ -32,9 +32,9 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from lammps import lammps  # noqa: E402
 
-import robust_helpers as rb  # noqa: E402
+import mpi_helpers as mpi  # noqa: E402
 
-ARGS = ["-log", "none", "-screen", "none", "-nocite"]
+ARGS = mpi.ARGS
 N = 40
 SMOOTH = "hertz/material 2e6 0.3 0.2 tangential history 1e4 0.5"
 LAW = SMOOTH + " rolling constant 0.1"
@@ -169,7 +169,7 @@ def main():
     probe.close()
     if nprocs != 4:
         sys.exit(f"mpi4_ranks.py needs 4 ranks, got {nprocs}")
-    work = rb.job_folder("mpi4_ranks_")
+    work = mpi.job_folder("mpi4_ranks_")
     restart = os.path.join(work, "settled.restart")
     failures = []
 
