@@ -12,6 +12,7 @@
 #include "utils.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -62,7 +63,11 @@ MaterialTable::MaterialTable(LAMMPS *lmp) : unit_style(lmp->update->unit_style)
 
   for (const auto &line : Tokenizer(packed, "\n").as_vector()) {
     auto words = Tokenizer(line).as_vector();
-    materials[words[0]] = {std::stod(words[1]), std::stod(words[2]), std::stod(words[3])};
+    // strtod, not stod: an entry beyond double range (1e999) becomes inf, which the force
+    // law's parameter ranges then refuse with an ERROR naming it
+    materials[words[0]] = {std::strtod(words[1].c_str(), nullptr),
+                           std::strtod(words[2].c_str(), nullptr),
+                           std::strtod(words[3].c_str(), nullptr)};
   }
 }
 

@@ -251,3 +251,18 @@ def test_materials_file_read_once_per_command(tmp_path):
     after_pair = reads(lmp)
     lmp.close()
     assert (after_wall, after_pair) == (1, 1)
+
+
+def test_material_beyond_double_range_is_an_error(tmp_path, monkeypatch):
+    """A materials-file entry beyond double range (E 1e999) is a LAMMPS ERROR naming E, not an
+    uncaught exception (the file in the working folder is found before LAMMPS_POTENTIALS)."""
+    (tmp_path / "ellipsoid_dep.materials").write_text(
+        "# DATE: 2026-12-01 test materials\nhuge 1e999 0.3 0.5\n")
+    monkeypatch.chdir(tmp_path)
+    lmp = new_lammps()
+    try:
+        with pytest.raises(Exception, match=r"\bE\b.*must be"):
+            lmp.commands_string(scenes.empty_pair_box(units="si")
+                                + "pair_coeff * * hertz/material huge\n")
+    finally:
+        lmp.close()
