@@ -468,5 +468,7 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
 
 double PairGranularEllipsoid::memory_usage()
 {
-  return static_cast<double>(states.capacity() * sizeof(EllipsoidState)) + contacts.memory_usage();
+  return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
+                             state_keys.capacity() * sizeof(ShapeKey)) +
+      contacts.memory_usage();
 }

@@ -23,7 +23,8 @@ void PairGranularEllipsoid::update_states()
   const EllipsoidAtoms atoms(atom);
   const int nall = atom->nlocal + atom->nghost;
   states.resize(nall);
-  for (int i = 0; i < nall; i++) states[i] = atoms.state(i);
+  state_keys.resize(nall);
+  for (int i = 0; i < nall; i++) atoms.update_state(i, states[i], state_keys[i]);
 }
 
 /* ---------------------------------------------------------------------- */
