@@ -507,6 +507,51 @@ def scaling_markdown(rows):
 
 
 # ----------------------------------------------------------------------------------------
+DEPOSIT_INPUT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
+
+
+def run_deposit(out, n, np, seed):
+    """The default deposit (eta 1.4, zeta 1.8, delta_r 0.6) of n particles from the empty box
+    to rest on np ranks: wall time, steps, phi, Z from its log."""
+    work = os.path.join(out, f"deposit_N{n}_np{np}_s{seed}")
+    os.makedirs(work, exist_ok=True)
+    cmd = [lmp_path(), "-in", DEPOSIT_INPUT, "-log", "log.lammps", "-screen", "none", "-nocite",
+           "-var", "N", str(n), "-var", "seed", str(seed), "-var", "out", work,
+           "-var", "image", "0", "-var", "tangential", "history 2.0e3 0.5"]    # the runner's
+    if np > 1:
+        cmd = ["mpirun", "-np", str(np), "--oversubscribe", "--bind-to", "none"] + cmd
+    t0 = time.time()
+    subprocess.run(cmd, cwd=work, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    wall = time.time() - t0
+    text = open(os.path.join(work, "log.lammps")).read()
+    steps = re.search(r"at rest after (\d+) steps", text)
+    res = re.search(r"^RESULT phi ([\d.eE+-]+) Z ([\d.eE+-]+)", text, re.M)
+    if not (steps and res):
+        raise RuntimeError(f"deposit did not finish: {work}/log.lammps")
+    return {"N": n, "ranks": np, "seed": seed, "wall_s": wall, "steps": int(steps.group(1)),
+            "phi": float(res.group(1)), "Z": float(res.group(2)),
+            "warnings": len(re.findall(r"^WARNING", text, re.M))}
+
+
+def bench_deposit(out, n, nps, seed):
+    rows = []
+    for np in nps:
+        print(f"  deposit N = {n} on {np} rank(s), seed {seed}", flush=True)
+        rows.append(run_deposit(out, n, np, seed))
+    one = next((r["wall_s"] for r in rows if r["ranks"] == 1), None)
+    for r in rows:
+        r["speedup"] = one / r["wall_s"] if one else float("nan")
+    return rows
+
+
+def deposit_markdown(rows):
+    return fmt_table(["N", "MPI ranks", "seed", "wall time (s)", "steps", "phi", "Z",
+                      "WARNINGs", "speed-up vs 1 rank"],
+                     [[r["N"], r["ranks"], r["seed"], f"{r['wall_s']:.0f}", r["steps"],
+                       f"{r['phi']:.5f}", f"{r['Z']:.4f}", r["warnings"],
+                       f"{r['speedup']:.2f}"] for r in rows])
+
+
 def run_kernel():
     exe = os.path.join(ROOT, "build", "bench", "bench_kernel")
     if not os.access(exe, os.X_OK):
@@ -522,8 +567,10 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--full", action="store_true", help="bigger N, M, repeats; N up to 1e5")
     ap.add_argument("--out", help="output folder (default runs/bench/quick or runs/bench/full)")
-    ap.add_argument("--only", choices=["peers", "knobs", "scaling"], action="append",
-                    help="run only these parts (repeatable)")
+    ap.add_argument("--only", choices=["peers", "knobs", "scaling", "deposit"],
+                    action="append",
+                    help="run only these parts (repeatable); deposit (the time to deposit "
+                    "N = 4000 on 2 and 1 ranks, minutes) runs by default only with --full")
     ap.add_argument("--repeats", type=int)
     args = ap.parse_args()
     mode = "full" if args.full else "quick"
@@ -531,7 +578,7 @@ def main():
     if os.path.isdir(out):
         shutil.rmtree(out)
     os.makedirs(out)
-    parts = args.only or ["peers", "knobs", "scaling"]
+    parts = args.only or ["peers", "knobs", "scaling"] + (["deposit"] if args.full else [])
     if args.full:
         cfg = {"n": 1000, "peer_k": 2, "M": 1000, "rep": args.repeats or 5, "knob_M": 500,
                "ks": [1, 2, 4, 8, 10], "nps": [1, 2]}
@@ -548,10 +595,21 @@ def main():
             "load": os.getloadavg()[0]}
     t0 = time.time()
     print(f"[bench] {mode}: output in {out}", flush=True)
-    g = make_scenes(out, cfg["n"])
-    report = {"meta": meta, "scene": g}
+    report = {"meta": meta}
     md = [f"commit {meta['commit']}, {meta['date']}, nproc {meta['nproc']}, "
           f"load average at start {meta['load']:.1f}, mode {mode}"]
+    if "deposit" in parts:
+        print("[bench] 0. time to deposit: the default deposit, N = 4000, empty box to rest",
+              flush=True)
+        rows = bench_deposit(out, 4000, [2, 1], 4928)
+        report["deposit"] = rows
+        m = deposit_markdown(rows)
+        md += ["\n### 0. Time to deposit (examples/deposit/in.deposit defaults, N = 4000, "
+               "from the empty box to rest)\n", m]
+        print(m, flush=True)
+    if set(parts) & {"peers", "knobs", "scaling"}:
+        g = make_scenes(out, cfg["n"])
+        report["scene"] = g
     if "peers" in parts:
         data_e, data_s = replicate(out, g, cfg["peer_k"])
         nmob = g["nmobile"] * cfg["peer_k"] ** 2

@@ -18,21 +18,19 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
                               const PipelineSettings &settings, double *cache,
                               PipelineCounters &counters)
 {
-  ++counters.pairs;
-  PairCache history(cache);
+  const BoundingTest bounds = bounding_test(a, b);
+  const Vec3 &dc = bounds.dc;
+  const double dist = bounds.dist, reach = bounds.reach;
   ContactGeometry g;
-  const Vec3 dc = b.center - a.center;
-  const double dist = dc.norm();
-  const double reach = a.bounding_radius + b.bounding_radius;
-  // NaN compares false: non-finite input falls through to the validity check
-  if (dist > reach && std::isfinite(dist) && std::isfinite(reach)) {
-    ++counters.bounding_rejects;
-    history.clear();
+  // non-finite input falls through to the validity check
+  if (reject_apart(bounds, cache, counters)) {
     g.status = Status::Separated;
     g.normal = dc / dist;
     g.overlap = reach - dist;    // minus a lower bound of the distance
     return g;
   }
+  ++counters.pairs;
+  PairCache history(cache);
   const PairCache::State state = history.state();
   Vec3 cached_n;
   const bool have_n = history.usable_normal(cached_n);

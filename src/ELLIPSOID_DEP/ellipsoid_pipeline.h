@@ -19,6 +19,7 @@
 #define ELLIPSOID_DEP_ELLIPSOID_PIPELINE_H
 
 #include "ellipsoid_contact.h"
+#include "ellipsoid_pair_cache.h"
 
 namespace EllipsoidDep {
 
@@ -72,6 +73,34 @@ constexpr int counter_index(long long PipelineCounters::*member)
   for (int k = 0; k < NUM_PIPELINE_COUNTERS; ++k)
     if (PIPELINE_COUNTERS[k].member == member) return k;
   return -1;
+}
+
+// The bounding-sphere test that opens every evaluation: dc = c_B - c_A, its length, the sum of
+// the bounding radii. NaN compares false: non-finite input is never apart.
+struct BoundingTest {
+  Vec3 dc;
+  double dist, reach;
+  bool apart;
+};
+inline BoundingTest bounding_test(const Ellipsoid &a, const Ellipsoid &b)
+{
+  BoundingTest t;
+  t.dc = b.center - a.center;
+  t.dist = t.dc.norm();
+  t.reach = a.bounding_radius + b.bounding_radius;
+  t.apart = t.dist > t.reach && std::isfinite(t.dist) && std::isfinite(t.reach);
+  return t;
+}
+
+// What an evaluation does with a pair whose bounding spheres are apart (cache cleared,
+// counted), for callers that test first and skip the call; true when the pair was apart.
+inline bool reject_apart(const BoundingTest &t, double *cache, PipelineCounters &counters)
+{
+  if (!t.apart) return false;
+  ++counters.pairs;
+  ++counters.bounding_rejects;
+  PairCache(cache).clear();
+  return true;
 }
 
 // Evaluates one pair; updates the cache (PairCache::PIPELINE_SIZE doubles) and the counters.

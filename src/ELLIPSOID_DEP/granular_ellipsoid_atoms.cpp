@@ -86,6 +86,25 @@ EllipsoidState EllipsoidAtoms::state(int i) const
   return s;
 }
 
+void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
+{
+  double values[7];
+  std::memcpy(values, quat(i), 4 * sizeof(double));
+  std::memcpy(values + 4, shape(i), 3 * sizeof(double));
+  const Vec3 center(atom->x[i][0], atom->x[i][1], atom->x[i][2]);
+  if (key.valid && std::memcmp(values, key.values, sizeof(values)) == 0) {
+    // a valid key was built (and since then moved) with a finite centre, so finite holds
+    // the validity of the shape alone; a non-finite centre invalidates the state and the key
+    s.shape.center = center;
+    if (!EllipsoidDep::finite3(center)) s.shape.finite = key.valid = false;
+  } else {
+    s.shape = EllipsoidDep::make_ellipsoid(center, values, Vec3(values[4], values[5], values[6]));
+    std::memcpy(key.values, values, sizeof(values));
+    key.valid = EllipsoidDep::finite3(center);
+  }
+  add_motion(i, s);
+}
+
 void EllipsoidAtoms::add_motion(int i, EllipsoidState &s) const
 {
   s.velocity = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);

@@ -26,6 +26,13 @@ struct EllipsoidState {
   double mass;
 };
 
+// The bonus values an atom's shape matrices are built from. Equal keys (bit for bit) give
+// identical matrices, so a state whose key is unchanged keeps them and only moves its centre.
+struct ShapeKey {
+  double values[7] = {};    // quaternion (w, x, y, z), semi-axes
+  bool valid = false;       // false: never built, or built from a non-finite centre
+};
+
 class EllipsoidAtoms {
  public:
   explicit EllipsoidAtoms(Atom *atom);
@@ -46,6 +53,9 @@ class EllipsoidAtoms {
   void omega(int i, double *w) const;            // angular velocity (box frame)
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
   EllipsoidState state(int i) const;
+  // state(i) into s, rebuilding the shape matrices only when key (that of the last build of
+  // s) differs from atom i's quaternion and semi-axes: atoms that do not rotate skip them
+  void update_state(int i, EllipsoidState &s, ShapeKey &key) const;
   // velocity, angular velocity and mass of state (for callers that build the shape first)
   void add_motion(int i, EllipsoidState &state) const;
 

@@ -374,5 +374,7 @@ void *PairGranularEllipsoid::extract(const char *name, int &dim)
 
 double PairGranularEllipsoid::memory_usage()
 {
-  return static_cast<double>(states.capacity() * sizeof(EllipsoidState)) + contacts.memory_usage();
+  return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
+                             state_keys.capacity() * sizeof(ShapeKey)) +
+      contacts.memory_usage();
 }

@@ -67,6 +67,7 @@ class PairGranularEllipsoid : public Pair {
 
   // per-atom state of owned + ghost atoms, rebuilt each force evaluation
   std::vector<EllipsoidState> states;
+  std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
   void update_states();
 
   // one pair: geometry from the pipeline, then the force law; returns true on contact

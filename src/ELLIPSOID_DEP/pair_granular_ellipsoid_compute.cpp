@@ -23,7 +23,8 @@ void PairGranularEllipsoid::update_states()
   const EllipsoidAtoms atoms(atom);
   const int nall = atom->nlocal + atom->nghost;
   states.resize(nall);
-  for (int i = 0; i < nall; i++) states[i] = atoms.state(i);
+  state_keys.resize(nall);
+  for (int i = 0; i < nall; i++) atoms.update_state(i, states[i], state_keys[i]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -87,13 +88,18 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       double *history = pair_history(i, jj);
-      const int law = law_index[type[i]][type[j]];
+      PairCache cache(history);
+      // most neighbours are beyond the bounding spheres: no evaluation to set up for them
+      if (reject_apart(bounding_test(states[i].shape, states[j].shape), history, counters)) {
+        touch[jj] = 0;
+        if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
+        continue;
+      }
 
       ContactGeometry geometry;
       ContactForce result;
-      const bool contact = pair_force(i, j, law, history, geometry, result);
+      const bool contact = pair_force(i, j, law_index[type[i]][type[j]], history, geometry, result);
       // keep the history of this pair while it caches a plane or a contact normal
-      PairCache cache(history);
       touch[jj] = cache.in_use() ? 1 : 0;
       if (!contact) {
         if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
