@@ -2,15 +2,17 @@
 """The deposit protocol's speed against the accuracy of its results (phi and Z).
 
     ./ellipsoid-dep python bench/protocol_trade.py [--N 400] [--seeds 101 202 303] [--jobs 2]
-                                                   [--only NAME ...] [--table-only]
+                                                   [--only NAME ...] [--by-config] [--table-only]
 
 Runs the default deposit (examples/deposit/in.deposit through tools/deposit_run.py, one rank,
 `nice -n 10`) for a stiff, slow reference and for variants that change ONE knob of it (normal
 stiffness kn, damping K, time step, drop height hdrop, insertion volume fraction fins), each
-for every seed. A finished run (its packing.dat has wall_seconds) is never run again, so the
-driver resumes where it stopped. The rest criterion ketol costs no runs: the reference's log
-has phi and Z (thermo) and KE per particle (PROGRESS) after every chunk, so a looser ketol is
-read off the reference's run at the first chunk end where a run with that ketol would stop.
+for every seed, and today's and the new defaults. A run whose log already reached its rest
+criterion, or that another driver is running (its running.pid), is not run again, so the
+driver resumes where it stopped and several drivers can share a grid. The rest criterion ketol
+costs no runs: a log has phi and Z (thermo) and KE per particle (PROGRESS) after every chunk,
+so a looser ketol is read off a run at the first chunk end where a run with that ketol would
+stop. Cost: steps, and CPU seconds from LAMMPS's loop time x its "% CPU use".
 
 Writes bench/results/protocol_trade_N<N>.csv (one row per run and ketol), prints the table
 (mean +- standard error over seeds, the difference from the reference against the reference's
@@ -54,17 +56,35 @@ LOOP = re.compile(r"^Loop time of (\S+) on \d+ procs for (\d+) steps")
 CPU_USE = re.compile(r"^(\S+)% CPU use with")
 
 
+# The defaults before and after this trade, side by side with the reference (dt 0: in.deposit
+# derives it, dtfrac x the Hertz contact time of its lightest pair at the drop's speed).
+DEFAULTS = [
+    ("before: dt 3e-4, ketol 1e-4",
+     {"kn": 1.0e4, "K": 200.0, "dt": 3.0e-4, "hdrop": 36.0, "fins": 0.2, "ketol": 1e-4}),
+    ("after: dtfrac 0.03, ketol 1e-3",
+     {"kn": 1.0e4, "K": 200.0, "dt": 0, "dtfrac": 0.03, "hdrop": 36.0, "fins": 0.2,
+      "ketol": 1e-3}),
+    ("after: dtfrac 0.075, ketol 1e-3",
+     {"kn": 1.0e4, "K": 200.0, "dt": 0, "dtfrac": 0.075, "hdrop": 36.0, "fins": 0.2,
+      "ketol": 1e-3}),
+]
+
+
+# looser rest criteria read off runs: the reference's, and today's default at the new one
+READ_OFF = {"reference": KETOLS, DEFAULTS[0][0]: [1e-3]}
+
+
 def configs():
     out = [("reference", dict(REFERENCE))]
     for name, change in VARIANTS:
         c = dict(REFERENCE, ketol=VARIANT_KETOL)
         c.update(change)
         out.append((name, c))
-    return out
+    return out + DEFAULTS
 
 
 def folder_name(name):
-    return name.replace(" ", "_")
+    return re.sub(r"[^A-Za-z0-9.+-]+", "_", name)
 
 
 def run_folder(runs, name, seed):
@@ -89,13 +109,16 @@ def running(out):
 
 
 def run_one(out, n, seed, config):
-    """One deposit; returns its CPU seconds."""
+    """One deposit; returns its CPU seconds (None: another driver did or does it)."""
+    if running(out) or finished(out, config["ketol"]):
+        return None
     os.makedirs(out, exist_ok=True)
     cmd = ["nice", "-n", "10", sys.executable, RUNNER, "--np", "1", "--N", str(n),
            "--seed", str(seed), "--out", out, "--no-image", "--no-plots", "--quiet",
            "--ketol", repr(config["ketol"])]
-    for name in ("kn", "K", "dt", "hdrop", "fins"):
-        cmd += ["--var", name, repr(config[name])]
+    for name in ("kn", "K", "dt", "dtfrac", "hdrop", "fins"):
+        if name in config:
+            cmd += ["--var", name, repr(config[name])]
     with open(os.path.join(out, "driver.txt"), "w") as log:
         proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
         with open(os.path.join(out, "running.pid"), "w") as f:
@@ -128,7 +151,7 @@ def chunk_ends(out):
     for line in open(os.path.join(out, "log.lammps")):
         w = line.split()
         if w[:1] == ["Step"]:
-            header = w
+            header = w if "c_pack[1]" in w else None    # not the time-step probe's run
             continue
         m = LOOP.match(line)
         if m:
@@ -150,6 +173,13 @@ def chunk_ends(out):
             rows.append((step, float(m.group(4)), float(m.group(2)) >= int(m.group(3)), phi, z,
                          cpu))
     return rows
+
+
+def run_dt(out, config):
+    """The run's time step: as printed by in.deposit (derived when dt is 0), else as given."""
+    m = re.search(r"^ELLIPSOID_DEP deposit: .*; dt (\S+);", open(os.path.join(out, "log.lammps")).read(),
+                  re.M)
+    return float(m.group(1)) if m else config["dt"]
 
 
 def results_of(out, config, ketols):
@@ -205,7 +235,9 @@ def main():
                        for name, c, s in todo}
             for f in concurrent.futures.as_completed(futures):
                 name, s = futures[f]
-                print("  done %-10s seed %d: %.0f CPU s" % (name, s, f.result()), flush=True)
+                cpu = f.result()
+                if cpu is not None:
+                    print("  done %-10s seed %d: %.0f CPU s" % (name, s, cpu), flush=True)
 
     table(args, runs, grid)
 
@@ -217,10 +249,11 @@ def table(args, runs, grid):
             out = run_folder(runs, name, s)
             if not finished(out, c["ketol"]):
                 continue
-            for ketol, steps, cpu, phi, z in results_of(out, c, KETOLS if name == "reference"
-                                                        else []):
-                label = name if ketol == c["ketol"] else "ketol %g" % ketol
-                per_run.append((label, ketol, s, c["dt"], c["kn"], c["K"], c["hdrop"],
+            for ketol, steps, cpu, phi, z in results_of(out, c, READ_OFF.get(name, [])):
+                label = name if ketol == c["ketol"] else \
+                    "ketol %g" % ketol if name == "reference" else "%s, read at ketol %g" % (
+                        name, ketol)
+                per_run.append((label, ketol, s, run_dt(out, c), c["kn"], c["K"], c["hdrop"],
                                 c["fins"], int(steps), cpu, phi, z))
     os.makedirs(os.path.join(ROOT, "bench", "results"), exist_ok=True)
     csv_path = os.path.join(ROOT, "bench", "results", "protocol_trade_N%d.csv" % args.N)
