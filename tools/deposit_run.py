@@ -2,7 +2,7 @@
 """Run the default ELLIPSOID_DEP deposit (examples/deposit/in.deposit) and post-process it.
 
     ./ellipsoid-dep run [--N 1000] [--np 2] [--out DIR] [--eta 1.4 --zeta 1.8 --dr 0.6]
-                        [--seed S] [--ketol 1e-4] [--checkpoint-every 5000] [--no-image]
+                        [--seed S] [--ketol 1e-3] [--checkpoint-every 5000] [--no-image]
                         [--input FILE] [--quiet]
     ./ellipsoid-dep run --resume DIR          # continue an interrupted run from its checkpoint
 
@@ -257,7 +257,7 @@ def plot_histograms(out, title):
 
 # what a run is: stored in its folder, so that --resume continues the same deposit
 DEFAULTS = {"N": 1000, "eta": 1.4, "zeta": 1.8, "dr": 0.6, "seed": 4928,
-            "tangential": "history 2.0e3 0.5", "ketol": 1e-4, "input": DEFAULT_INPUT,
+            "tangential": "history 2.0e3 0.5", "ketol": 1e-3, "input": DEFAULT_INPUT,
             "checkpoint_every": 5000, "image": True, "vars": {}}
 SETTINGS_FILE = "settings.json"
 
@@ -278,7 +278,7 @@ def parse_args(argv):
                     help='tangential law words (default "history 2.0e3 0.5"; the paper\'s '
                          'viscous law: "viscous 0.5")')
     ap.add_argument("--ketol", type=float,
-                    help="rest criterion: KE per particle / (m g d) (default 1e-4)")
+                    help="rest criterion: KE per particle / (m g d) (default 1e-3)")
     ap.add_argument("--input", help="LAMMPS input (default in.deposit)")
     ap.add_argument("--checkpoint-every", type=int, dest="checkpoint_every", metavar="STEPS",
                     help="steps between two restart checkpoints, 0 = none (default 5000; "

@@ -48,10 +48,12 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
 
   single_extra = 10;
   svector = new double[single_extra];
-  // the counters, for "compute ID all pair granular/ellipsoid" (which sums them over ranks)
-  nextra = NUM_COUNTERS;
+  // the counters, for "compute ID all pair granular/ellipsoid" (which sums them over ranks),
+  // then the contact time (rank 0 holds it, the others 0, so that the sum is its value)
+  nextra = NUM_COUNTERS + 1;
   pvector = new double[nextra];
   local_counters(pvector);
+  pvector[NUM_COUNTERS] = 0.0;
   for (double &c : counters_global) c = 0.0;
 
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
@@ -321,6 +323,7 @@ void PairGranularEllipsoid::update_contact_time()
         tj = j;
       }
     }
+  pvector[NUM_COUNTERS] = comm->me == 0 ? contact_time : 0.0;
   LAMMPS_NS::report_contact_time(lmp, "Pair granular/ellipsoid", contact_time,
                                  fmt::format("types {} {}", ti, tj), speed, contact_time_reported);
 }

@@ -103,7 +103,8 @@ def test_counters_follow_the_pipeline(tmp_path):
     """compute pair exposes the pair's counters: an approach passes through bounding rejects,
     cached planes and Wang tests before the contact, and every evaluation converges. The
     counters are read by name from the pair's JSON line at the end of the run and must equal
-    Pair::extract("counters/NAME") and the vector of compute pair, whose order is the JSON's."""
+    Pair::extract("counters/NAME") and the vector of compute pair, whose order is the JSON's
+    (its last entry is the contact time, Pair::extract("contact_time"))."""
     lmp = head_on_pair(2.5, 77, gap=1.0)
     log = tmp_path / "log.lammps"
     lmp.commands_string(f"""
@@ -124,9 +125,12 @@ def test_counters_follow_the_pipeline(tmp_path):
     for name in c:
         extracted[name] = lmp.extract_pair("counters/" + name)
     assert lmp.extract_pair("counters/no_such_counter") is None
+    contact_time = lmp.extract_pair("contact_time")
     lmp.close()
     assert extracted == c, (extracted, c)
-    assert vector == list(c.values()), (vector, c)
+    # the counters, then the contact time of the run start
+    assert vector[:-1] == list(c.values()), (vector, c)
+    assert contact_time > 0 and vector[-1] == contact_time
     assert c["bounding_rejects"] > 0 and c["plane_hits"] > 0 and c["wang_calls"] > 0, c
     assert c["contacts"] > 10, c
     assert c["plane_hits"] > c["wang_calls"], "cached planes should spare most Wang tests"

@@ -1,0 +1,86 @@
+"""The default deposit's time step is a stated fraction of the Hertz contact time.
+
+examples/deposit/in.deposit lets the pair find the contact time of the lightest pair the pour
+can make (a probe of the smallest size r = 0.5 (1 - dr)) at the speed of the drop,
+sqrt(2 g hdrop), and sets dt = dtfrac x that time:
+
+* dt equals dtfrac times the time the pair reports (its log line and compute pair's entry);
+* that time is the closed-form Hertz time of two of the smallest particles at that speed, and
+  no poured particle is lighter (the pair's later reports are not shorter);
+* no contact-time WARNING (nor any other) appears; an explicit dt is used as given.
+"""
+import math
+import os
+import re
+
+import pytest
+from lammps import lammps
+from scipy.special import beta
+
+ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
+                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
+REPORT = re.compile(r"^Pair granular/ellipsoid: Hertz contact time (\S+) \(types 1 1, impact "
+                    r"speed (\S+)\)", re.M)
+
+
+def short_deposit(tmp_path, name, variables):
+    """in.deposit with 100 particles for one chunk of 200 steps: (dt, dtfrac, tc, log, lightest
+    mass poured)."""
+    out = tmp_path / name
+    out.mkdir()
+    args = {"N": "100", "maxchunks": "1", "chunk": "200", "image": "0", "out": str(out),
+            **variables}
+    cmd = ["-screen", "none", "-nocite", "-log", str(out / "log.lammps")]
+    for key, value in args.items():
+        cmd += ["-var", key, value]
+    lmp = lammps(cmdargs=cmd)
+    lmp.file(DEPOSIT)
+    dt = lmp.extract_global("dt")
+    dtfrac = float(lmp.extract_variable("dtfrac"))
+    tc = lmp.extract_variable("tc") if "dt" not in variables else None
+    masses = lmp.numpy.extract_atom("rmass")[:lmp.extract_global("nlocal")]
+    lightest = float(masses.min())
+    lmp.close()
+    with open(out / "log.lammps") as f:
+        return dt, dtfrac, tc, f.read(), lightest
+
+
+def hertz_time(stiffness, m_eff, speed):
+    return 2 * 0.4 * beta(0.4, 0.5) * (5 * m_eff * speed**2 / (4 * stiffness))**0.4 / speed
+
+
+@pytest.mark.parametrize("name,variables", [
+    ("default", {}),
+    ("stiff_low_drop", {"kn": "4.0e4", "hdrop": "12.0", "dr": "0.3", "eta": "2.0"}),
+])
+def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, variables):
+    dt, dtfrac, tc, log, lightest = short_deposit(tmp_path, name, variables)
+    reports = [(float(t), float(v)) for t, v in REPORT.findall(log)]
+    assert reports, "the pair reported no contact time"
+    probe_time, speed = reports[0]
+    # the pair's report is the time the input used, and dt is the stated fraction of it
+    assert tc == pytest.approx(probe_time, rel=1e-5)
+    assert dt == pytest.approx(dtfrac * tc, rel=1e-12)
+    assert 0 < dtfrac < 0.1    # below the pair's warning threshold
+    # the lightest pair the pour can make, meeting at the speed of the drop
+    hdrop = float(variables.get("hdrop", "36"))
+    kn = float(variables.get("kn", "1.0e4"))
+    rmin = 0.5 * (1 - float(variables.get("dr", "0.6")))
+    mmin = 4.0 / 3.0 * math.pi * rmin**3
+    assert speed == pytest.approx(math.sqrt(2 * hdrop), rel=1e-5)
+    assert tc == pytest.approx(hertz_time(kn, mmin / 2, math.sqrt(2 * hdrop)), rel=1e-10)
+    # the poured particles are no lighter, so no later contact is shorter
+    assert lightest >= mmin * (1 - 1e-12)
+    assert all(t >= probe_time * (1 - 1e-5) for t, _ in reports)
+    assert re.search(r"^time step \S+ = \S+ x the Hertz contact time", log, re.M)
+    assert "ELLIPSOID_DEP deposit: N 100" in log
+    assert "contact time" not in "".join(re.findall(r"WARNING.*", log))
+    assert "WARNING" not in log
+
+
+def test_explicit_dt_is_used_as_given(tmp_path):
+    dt, _, _, log, _ = short_deposit(tmp_path, "explicit", {"dt": "2.5e-4"})
+    assert dt == 2.5e-4
+    assert not re.search(r"^time step ", log, re.M)    # no probe
+    assert "WARNING" not in log
