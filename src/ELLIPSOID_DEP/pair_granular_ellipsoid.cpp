@@ -54,7 +54,7 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   pvector = new double[nextra];
   local_counters(pvector);
   pvector[NUM_COUNTERS] = 0.0;
-  for (double &c : counters_global) c = 0.0;
+  for (double &c : counters_extracted) c = 0.0;
 
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
   fix_dummy =

@@ -49,7 +49,7 @@ class PairGranularEllipsoid : public Pair {
  protected:
   EllipsoidDep::PipelineSettings pipeline;
   EllipsoidDep::PipelineCounters counters;
-  double counters_global[NUM_COUNTERS];
+  double counters_extracted[NUM_COUNTERS];
 
   // per type pair (1..ntypes): index into laws
   int **law_index;

@@ -151,7 +151,16 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
 {
   for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
   fforce = 0.0;
-  if (static_cast<int>(states.size()) < atom->nlocal + atom->nghost) update_states();
+  // the states of i and j as they are now, not as the last force evaluation left them
+  // (atoms may have moved, turned or been added since); two atoms per call
+  const int nall = atom->nlocal + atom->nghost;
+  if (static_cast<int>(states.size()) < nall) {
+    states.resize(nall);
+    state_keys.resize(nall);
+  }
+  const EllipsoidAtoms atoms(atom);
+  atoms.update_state(i, states[i], state_keys[i]);
+  atoms.update_state(j, states[j], state_keys[j]);
 
   // the stored history of this pair, if the neighbour list still holds it
   std::vector<double> history(size_history, 0.0);

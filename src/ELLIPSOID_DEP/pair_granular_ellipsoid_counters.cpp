@@ -28,9 +28,9 @@ void PairGranularEllipsoid::global_counters(double *out) const
 }
 
 /* ----------------------------------------------------------------------
-   Pair::extract of the counters: "counters": every counter summed over all ranks (dim 1,
-   table order);
-   "counters/NAME": one of them (dim 0). Collective: every rank must call it.
+   Pair::extract of the counters: "counters": this rank's counters (dim 1, table order);
+   "counters/NAME": one of them (dim 0). Not collective, so a library caller may ask on one
+   rank alone; compute pair and the end-of-run report give the sums over ranks.
 ------------------------------------------------------------------------- */
 
 void *PairGranularEllipsoid::extract_counters(const char *name, int &dim)
@@ -38,15 +38,15 @@ void *PairGranularEllipsoid::extract_counters(const char *name, int &dim)
   static const char prefix[] = "counters/";
   if (std::strcmp(name, "counters") == 0) {
     dim = 1;
-    global_counters(counters_global);
-    return (void *) counters_global;
+    local_counters(counters_extracted);
+    return (void *) counters_extracted;
   }
   if (std::strncmp(name, prefix, sizeof(prefix) - 1) == 0)
     for (int k = 0; k < NUM_COUNTERS; k++)
       if (std::strcmp(name + sizeof(prefix) - 1, PIPELINE_COUNTERS[k].name) == 0) {
         dim = 0;
-        global_counters(counters_global);
-        return (void *) &counters_global[k];
+        local_counters(counters_extracted);
+        return (void *) &counters_extracted[k];
       }
   return nullptr;
 }
