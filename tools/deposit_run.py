@@ -228,6 +228,25 @@ def read_packing(path):
     return d
 
 
+def plot_profile(out, title, pk):
+    """phi(z) of compute packing/profile (profile.dat) with the slab of packing.dat"""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    z, phi, _ = read_histo(os.path.join(out, "profile.dat"))
+    fig, ax = plt.subplots(figsize=(4.2, 5.0))
+    ax.plot(phi, z, "-", lw=1, label=r"$\phi(z)$")
+    ax.axhspan(pk["zlo"], pk["zhi"], color="C1", alpha=0.15, label="slab of packing.dat")
+    ax.axvline(pk["phi"], color="gray", ls="--", label=r"$\phi$ of the slab")
+    ax.set_xlabel(r"solid fraction $\phi(z)$")
+    ax.set_ylabel("z")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "profile.png"), dpi=120)
+    plt.close(fig)
+
+
 def plot_histograms(out, title):
     import matplotlib
     matplotlib.use("Agg")
@@ -397,6 +416,7 @@ def main(argv=None):
     title = r"$\eta$=%g $\zeta$=%g $\delta_r$=%g N=%d" % (st["eta"], st["zeta"], st["dr"], st["N"])
     if not args.no_plots:
         plot_histograms(out, title)
+        plot_profile(out, title, pk)
 
     print("\ndeposit_run: N %d  eta %g  zeta %g  delta_r %g  (%d ranks, %.0f s, %d steps)"
           % (st["N"], st["eta"], st["zeta"], st["dr"], args.np, wall, int(pk.get("steps", 0))))
@@ -411,6 +431,8 @@ def main(argv=None):
              "contact_histo.dat": "contact-normal histogram (theta, P(Omega), fraction)",
              "orient_histo.dat": "long-axis histogram (theta, P(Omega), fraction)",
              "contact_histo.png": "plot", "orient_histo.png": "plot",
+             "profile.dat": "solid fraction phi(z) per bin: z, phi, solid volume, centres",
+             "profile.png": "plot of phi(z) with the slab",
              "deposit.dump": "OVITO dump: semi-axes (radii) and quaternion w,i,j,k",
              "deposit.png": "picture (dump image)"}
     for name in sorted(os.listdir(out)):

@@ -1,9 +1,11 @@
 """The default deposit end to end at a tiny size: tools/deposit_run.py on 2 MPI ranks (split
 in x and y) pours 40 particles of examples/deposit/in.deposit, stops at rest and writes its
-files: the log, packing.dat, the histograms, the dump (semi-axes and quaternions) and the
-three PNGs (dump image and matplotlib). The rest criterion is 1e-2 m g d per particle (the
+files: the log, packing.dat, the histograms, the profile, the dump (semi-axes and quaternions) and the
+PNGs (dump image; matplotlib: histograms and the phi(z) profile). The rest criterion is 1e-2 m g d per particle (the
 tiny study's), which the checks here do not depend on."""
 import os
+
+import deposit_run
 
 from study_helpers import PY, TOOLS, assert_image, run
 
@@ -14,9 +16,9 @@ def test_default_deposit(tmp_path):
                 "--ketol", "1e-2", "--out", str(out), "--quiet"], str(tmp_path), 600)
     assert "volume fraction phi" in text
     for name in ("log.lammps", "packing.dat", "contact_histo.dat", "orient_histo.dat",
-                 "deposit.dump"):
+                 "profile.dat", "deposit.dump"):
         assert (out / name).stat().st_size > 0, name
-    for name in ("deposit.png", "contact_histo.png", "orient_histo.png"):
+    for name in ("deposit.png", "contact_histo.png", "orient_histo.png", "profile.png"):
         assert_image(str(out / name))
     pk = {}
     for line in open(out / "packing.dat"):
@@ -27,6 +29,10 @@ def test_default_deposit(tmp_path):
     # above the ground, two below the surface) may be empty, so only sanity is checked
     assert 0.0 <= float(pk["phi"]) < 0.8
     assert int(float(pk["steps"])) > 0
+    # the phi(z) profile of compute packing/profile: fractions in [0, 1], some solid
+    z, phi, volume = deposit_run.read_histo(str(out / "profile.dat"))
+    assert len(z) > 1 and all(0.0 <= p <= 1.0 for p in phi)
+    assert sum(volume) > 0
     # the dump holds 40 particles with semi-axes and quaternions
     lines = open(out / "deposit.dump").read().splitlines()
     assert lines[3].strip() == "40"
