@@ -134,7 +134,7 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
 def test_paper_study_definition(tmp_path):
     """the paper's study (workflow/config/paper.yaml) covers what the study must hold"""
     text = run(["snakemake", "--snakefile", SNAKEFILE, "--configfile",
-                os.path.join(ROOT, "workflow", "config", "paper.yaml"), "--cores", "2", "-n",
+                os.path.join(ROOT, "workflow", "config", "paper.yaml"), "--cores", "2", "-n", "-p",
                 "--directory", str(tmp_path), "--config", "scratch=%s" % tmp_path,
                 "results=%s" % (tmp_path / "results")],    # every deposit, whatever is committed
                str(tmp_path), 300)
@@ -146,6 +146,9 @@ def test_paper_study_definition(tmp_path):
         key = (float(d["eta"]), float(d["zeta"]), float(d["dr"]), d["law"])
         assert int(d["N"]) >= 3000
         points.setdefault(key, set()).add(int(d["seed"]))
+    # one time step for every deposit (the config's vars reach the runner)
+    commands = [line for line in text.splitlines() if "deposit_run.py" in line]
+    assert commands and all("--var dt 0.0003" in line for line in commands)
     grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
     for e in grid:
         for z in grid:
