@@ -11,6 +11,8 @@
    Global vector (Q = <(3 u u^T - I)/2> over the particles):
      1 S = largest eigenvalue of Q   2-4 its eigenvector (director, n_z >= 0)
      5 Q_zz = <P2(cos theta)>   6 <cos^2 theta>   7 number of particles
+   Per-atom vector: acos|u_z| in [0, pi/2] of every atom of the group, slab or not (0 for
+   atoms outside the group), e.g. to colour a picture by the tilt of the long axis.
 
    Arguments, array and slab handling: ComputeAngleHisto (compute_angle_histo.cpp). The
    shapes and orientations come from EllipsoidAtoms (atom_style ellipsoid, with or without
@@ -22,11 +24,14 @@
 #include "atom.h"
 #include "error.h"
 #include "math_const.h"
+#include "memory.h"
+#include "update.h"
 
 #include "granular_ellipsoid_atoms.h"
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -44,9 +49,18 @@ const char *const COLNAMES[ComputeOrientHisto::NVALUES] = {"S",   "nx",   "ny", 
 
 ComputeOrientHisto::ComputeOrientHisto(LAMMPS *lmp, int narg, char **arg) :
     ComputeAngleHisto(lmp, narg, arg, "orient/histo", NVALUES, COLNAMES, 1), which_axis(0),
-    fold(false)
+    fold(false), nmax(0), axis_angle(nullptr)
 {
   parse_args(narg, arg);
+  peratom_flag = 1;
+  size_peratom_cols = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+ComputeOrientHisto::~ComputeOrientHisto()
+{
+  memory->destroy(axis_angle);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -79,6 +93,28 @@ void ComputeOrientHisto::init()
   ComputeAngleHisto::init();
 }
 
+/* ----------------------------------------------------------------------
+   u = the chosen principal axis of atom i (which has a shape) in the box frame
+------------------------------------------------------------------------- */
+
+void ComputeOrientHisto::chosen_axis(const EllipsoidAtoms &ellipsoids, int i, double *u) const
+{
+  const double *shape = ellipsoids.shape(i);
+  // rank the semi-axes, ties resolved by the lower body-axis index (stable order)
+  int order[3] = {0, 1, 2};
+  for (int p = 0; p < 3; p++)
+    for (int q = p + 1; q < 3; q++)
+      if (shape[order[q]] > shape[order[p]] ||
+          (shape[order[q]] == shape[order[p]] && order[q] < order[p])) {
+        const int t = order[p];
+        order[p] = order[q];
+        order[q] = t;
+      }
+  const int axis = order[which_axis];
+  const EllipsoidDep::Mat3 rot = EllipsoidDep::quaternion_rotation(ellipsoids.quat(i));
+  for (int d = 0; d < 3; d++) u[d] = rot(d, axis);
+}
+
 /* ---------------------------------------------------------------------- */
 
 void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
@@ -97,22 +133,8 @@ void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
       no_shape[0] += 1.0;
       continue;
     }
-    const double *shape = ellipsoids.shape(i);
-    const double *quat = ellipsoids.quat(i);
-    // rank the semi-axes, ties resolved by the lower body-axis index (stable order)
-    int order[3] = {0, 1, 2};
-    for (int p = 0; p < 3; p++)
-      for (int q = p + 1; q < 3; q++)
-        if (shape[order[q]] > shape[order[p]] ||
-            (shape[order[q]] == shape[order[p]] && order[q] < order[p])) {
-          const int t = order[p];
-          order[p] = order[q];
-          order[q] = t;
-        }
-    const int axis = order[which_axis];
-    const EllipsoidDep::Mat3 rot = EllipsoidDep::quaternion_rotation(quat);
-    const double u[3] = {rot(0, axis), rot(1, axis), rot(2, axis)};    // body axis in box frame
-
+    double u[3];
+    chosen_axis(ellipsoids, i, u);
     if (fold) {
       bin(std::fabs(u[2]));
     } else {
@@ -149,4 +171,46 @@ void ComputeOrientHisto::finish_vector(const double *moments, double npart, cons
     vector[QZZ] = Q(2, 2);
     vector[COS2] = m[2];
   }
+}
+
+/* ----------------------------------------------------------------------
+   per-atom angle of the chosen axis to the vertical, acos|u_z|
+------------------------------------------------------------------------- */
+
+void ComputeOrientHisto::compute_peratom()
+{
+  invoked_peratom = update->ntimestep;
+  if (atom->nmax > nmax) {
+    memory->destroy(axis_angle);
+    nmax = atom->nmax;
+    memory->create(axis_angle, nmax, "orient/histo:axis_angle");
+    vector_atom = axis_angle;
+  }
+  const EllipsoidAtoms ellipsoids(atom);
+  if (!ellipsoids.avec) error->all(FLERR, "Compute orient/histo requires atom style ellipsoid");
+  const int nlocal = atom->nlocal;
+  int *mask = atom->mask;
+  int missing = 0;
+  for (int i = 0; i < nlocal; i++) {
+    axis_angle[i] = 0.0;
+    if (!(mask[i] & groupbit)) continue;
+    if (!ellipsoids.has_shape(i)) {
+      missing = 1;
+      continue;
+    }
+    double u[3];
+    chosen_axis(ellipsoids, i, u);
+    axis_angle[i] = std::acos(std::min(1.0, std::fabs(u[2])));
+  }
+  int any_missing = 0;
+  MPI_Allreduce(&missing, &any_missing, 1, MPI_INT, MPI_MAX, world);
+  if (any_missing)
+    error->all(FLERR, "Compute orient/histo: every atom of the group must have a shape");
+}
+
+/* ---------------------------------------------------------------------- */
+
+double ComputeOrientHisto::memory_usage()
+{
+  return (double) nmax * sizeof(double);
 }

@@ -11,10 +11,15 @@
 
 namespace LAMMPS_NS {
 
+class EllipsoidAtoms;
+
 class ComputeOrientHisto : public ComputeAngleHisto {
  public:
   ComputeOrientHisto(class LAMMPS *, int, char **);
+  ~ComputeOrientHisto() override;
   void init() override;
+  void compute_peratom() override;
+  double memory_usage() override;
 
   // the global vector: order parameter S, director (x y z), Q_zz, <cos^2 theta>, particles
   enum Value { S, DIRECTOR, QZZ = DIRECTOR + 3, COS2, PARTICLES, NVALUES };
@@ -27,6 +32,10 @@ class ComputeOrientHisto : public ComputeAngleHisto {
  private:
   int which_axis;    // 0 longest, 1 middle, 2 shortest semi-axis
   bool fold;         // theta folded into [0, pi/2] (each axis once)
+  int nmax;
+  double *axis_angle;    // per-atom acos|u_z|
+
+  void chosen_axis(const EllipsoidAtoms &, int i, double *u) const;
 };
 
 }    // namespace LAMMPS_NS

