@@ -38,7 +38,8 @@ def deposit_row(packing_path):
     row = {"point": point, "law": point.rsplit("_", 1)[1], "seed": int(pk["seed"]),
            "eta": pk["eta"], "zeta": pk["zeta"], "delta_r": pk["delta_r"], "N": int(pk["N"]),
            "rattler_fraction": pk["rattlers"] / pk["Nslab"] if pk["Nslab"] > 0 else math.nan,
-           "resumed_from": int(pk["resumed_from"]) if "resumed_from" in pk else ""}
+           "resumed_from": int(pk["resumed_from"]) if "resumed_from" in pk else "",
+           "at_rest": pk.get("at_rest", 1) == 1}    # older packing.dat: written at rest only
     for q in QUANTITIES:
         row.setdefault(q, pk.get(q, math.nan))
     row["folder"] = folder
@@ -79,6 +80,10 @@ def main(argv=None):
     results = os.path.abspath(args.results)
     deposits = sorted((deposit_row(p) for p in args.packing),
                       key=lambda r: tuple(r[k] for k in KEYS) + (r["seed"],))
+    moving = [r["folder"] for r in deposits if not r["at_rest"]]
+    if moving:
+        sys.exit("study_table: ERROR: deposits not at rest (maxchunks ran out), not a result: "
+                 + " ".join(moving))
     write_csv(os.path.join(results, "deposits.csv"),
               ["point"] + KEYS + ["seed"] + QUANTITIES + ["resumed_from"], deposits)
 

@@ -6,6 +6,7 @@ import csv
 import math
 import os
 import shutil
+import subprocess
 
 import yaml
 
@@ -129,6 +130,14 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
             if not line.startswith("#")]
     assert hist[0][:2] == [0.5, 2.0] and abs(hist[0][2] - sem([1, 2, 3])) < 1e-6
     assert hist[1][:2] == [1.5, 4.0] and abs(hist[1][2] - sem([2, 4, 6])) < 1e-6
+
+    # a deposit that ran out of chunks before rest is not a result: the table refuses it
+    moving = res / "points" / "eta1.2_zeta1.4_dr0.3_N500_viscous" / "s1" / "packing.dat"
+    moving.write_text(moving.read_text() + "at_rest 0\n")
+    failed = subprocess.run([PY, os.path.join(TOOLS, "study_table.py"), "--results", str(res)]
+                            + packings, capture_output=True, text=True, timeout=60)
+    assert failed.returncode != 0
+    assert "not at rest" in failed.stderr and str(moving.parent) in failed.stderr
 
 
 def test_paper_study_definition(tmp_path):
