@@ -188,7 +188,8 @@ void FixPourEllipsoid::init()
 
 /* ----------------------------------------------------------------------
    the schedule, and how full a batch is: the mean volume fraction of the region, the
-   fraction at its top (the stream's density is ~ 1/speed, highest where it enters), and
+   fraction at its top (a stream's density is ~ 1/speed, highest where it enters; a cloud
+   is uniform), and
    the region height that would take all N particles in one batch
 ------------------------------------------------------------------------- */
 
@@ -201,7 +202,10 @@ void FixPourEllipsoid::report_schedule() const
   const double fill = nbatch * sampler->mean_volume() / volume;
   const double v_top = fabs(vz), v_bottom = sqrt(vz * vz - 2.0 * grav * height);
   std::string top = "unbounded: vz = 0";
-  if (v_top > 0.0) top = fmt::format("{:.3g}", fill * 0.5 * (1.0 + v_bottom / v_top));
+  if (cloud)
+    top = fmt::format("{:.3g}", fill);
+  else if (v_top > 0.0)
+    top = fmt::format("{:.3g}", fill * 0.5 * (1.0 + v_bottom / v_top));
   utils::logmesg(lmp,
                  "fix pour/ellipsoid: {} particles every {} steps, {} by step {}; r in [{}, {}], "
                  "largest semi-axis {}, mean volume {:.6g}\n"

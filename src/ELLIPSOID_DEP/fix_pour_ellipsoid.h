@@ -56,7 +56,8 @@ class FixPourEllipsoid : public Fix {
   double volfrac;
   int maxattempt;
   double rate, vxlo, vxhi, vylo, vyhi, vz;
-  int every;    // 0: from gravity like fix pour
+  int every;     // 0: from gravity like fix pour
+  bool cloud;    // release cloud: uniform heights, every particle starts with vz
   double grav;
   int nper, nfreq;
   bigint nfirst, next_insert;
@@ -88,7 +89,7 @@ class FixPourEllipsoid : public Fix {
   bool overlaps(const EllipsoidDep::Ellipsoid &, const std::vector<EllipsoidDep::Ellipsoid> &);
   bool near_region(const double *x, double bound) const;
   bool outside(int dim, double value, double lo, double hi) const;
-  double stream_depth(double rn, double height) const;
+  double batch_depth(double rn, double height) const;
   void xyz_random(double h, double *coord);
   bool owns(const double *coord) const;
   void create_particle(double *coord, const double *vnew, tagint tag, const Eigen::Vector3d &axes,

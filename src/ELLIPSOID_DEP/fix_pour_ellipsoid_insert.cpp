@@ -94,15 +94,16 @@ void FixPourEllipsoid::xyz_random(double h, double *coord)
 }
 
 /* ----------------------------------------------------------------------
-   depth below the top of the stream (0 <= depth <= height) of a particle with uniform
-   deviate rn: a batch is a snapshot of a steady stream that enters the region's top at
-   speed |vz| and falls under gravity, so the time since entry, not the depth, is uniform
-   and the number density is ~ 1/speed. With vz = 0 this is LAMMPS fix pour's rn^2 law,
-   whose density diverges at the top.
+   depth below the top of the batch (0 <= depth <= height) of a particle with uniform
+   deviate rn. release cloud: uniform. release stream: a snapshot of a steady stream that
+   enters the region's top at speed |vz| and falls under gravity, so the time since entry,
+   not the depth, is uniform and the number density is ~ 1/speed. With vz = 0 this is
+   LAMMPS fix pour's rn^2 law, whose density diverges at the top.
 ------------------------------------------------------------------------- */
 
-double FixPourEllipsoid::stream_depth(double rn, double height) const
+double FixPourEllipsoid::batch_depth(double rn, double height) const
 {
+  if (cloud) return rn * height;
   const double v0 = fabs(vz), g = -grav;
   if (v0 == 0.0) return rn * rn * height;
   const double t = rn * 2.0 * height / (sqrt(v0 * v0 + 2.0 * g * height) + v0);
@@ -196,15 +197,15 @@ void FixPourEllipsoid::pre_exchange()
     // inserted through a floor (or wall) at the region's bottom
     const double bound = axes.maxCoeff();
     const double span = hi_current - lo_current - 2.0 * bound;
-    double h = (hi_current - bound) - stream_depth(rn, span);
+    double h = (hi_current - bound) - batch_depth(rn, span);
 
-    // maxattempt trial positions at one height; where that height of the stream is full,
-    // the particle takes another place in the stream (a fresh height deviate)
+    // maxattempt trial positions at one height; where that height of the batch is full,
+    // the particle takes another height (a fresh deviate)
     bool success = false;
     double quat[4], coord[3];
     Ellipsoid cand;
     for (int height = 0; height < MAX_HEIGHTS && !success; height++) {
-      if (height > 0) h = (hi_current - bound) - stream_depth(random->uniform(), span);
+      if (height > 0) h = (hi_current - bound) - batch_depth(random->uniform(), span);
       for (int attempt = 0; attempt < maxattempt; attempt++) {
         xyz_random(h, coord);
         sampler->orientation(quat);
@@ -223,11 +224,12 @@ void FixPourEllipsoid::pre_exchange()
     near.push_back(cand);
     nsuccess++;
 
-    // velocity: as if fallen from the top of the region (continuous stream, fix pour)
+    // velocity: a stream's as if fallen from the top of the region (fix pour); a cloud is
+    // released as one body
     double vnew[3];
     vnew[0] = vxlo + random->uniform() * (vxhi - vxlo);
     vnew[1] = vylo + random->uniform() * (vyhi - vylo);
-    if (grav < 0.0)
+    if (grav < 0.0 && !cloud)
       vnew[2] = -sqrt(MAX(0.0, vz * vz + 2.0 * grav * (coord[2] - hi_current)));
     else
       vnew[2] = vz;

@@ -35,6 +35,7 @@ void FixPourEllipsoid::options(int narg, char **arg)
   rate = 0.0;
   vxlo = vxhi = vylo = vyhi = vz = 0.0;
   every = 0;
+  cloud = false;
 
   auto number = [&](int i, const std::string &what) {
     if (i >= narg) utils::missing_cmd_args(FLERR, "fix pour/ellipsoid " + what, error);
@@ -153,6 +154,14 @@ void FixPourEllipsoid::options(int narg, char **arg)
       if (vylo > vyhi)
         error->all(FLERR, iarg + 3, "Fix pour/ellipsoid vel vylo {} exceeds vyhi {}", vylo, vyhi);
       iarg += 6;
+    } else if (word == "release") {
+      if (iarg + 1 >= narg) utils::missing_cmd_args(FLERR, "fix pour/ellipsoid release", error);
+      const std::string how = arg[iarg + 1];
+      if (how != "stream" && how != "cloud")
+        error->all(FLERR, iarg + 1, "Fix pour/ellipsoid release must be stream or cloud, got {}",
+                   how);
+      cloud = how == "cloud";
+      iarg += 2;
     } else if (word == "every") {
       every = integer(iarg + 1, "every");
       if (every <= 0)
