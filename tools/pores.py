@@ -24,6 +24,7 @@ several run folders and plots porosity, specific surface and permeability agains
 along the lines eta = zeta, prolate (zeta = 1, vs eta) and oblate (eta = 1, vs zeta).
 """
 import argparse
+import csv
 import json
 import math
 import os
@@ -626,11 +627,19 @@ def compare(run_dirs, out_png, voxel=None, quiet=False):
         ax.set(xlabel=r"aspect ratio ($\eta$ or $\zeta$)", ylabel=label)
         ax.legend(fontsize=7)
     for (eta, zeta), rs in sorted(by_shape.items()):
-        table.append({"eta": eta, "zeta": zeta, "runs": len(rs),
-                      **{k: float(np.mean([r[k] for r in rs])) for k, _ in COMPARED}})
+        row = {"eta": eta, "zeta": zeta, "runs": len(rs)}
+        for k, _ in COMPARED:
+            v = [r[k] for r in rs]
+            row[k] = float(np.mean(v))
+            row[k + "_sem"] = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else ""
+        table.append(row)
     fig.tight_layout()
     fig.savefig(out_png, dpi=120)
     plt.close(fig)
+    with open(os.path.splitext(out_png)[0] + ".csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(table[0]) if table else ["eta", "zeta", "runs"])
+        w.writeheader()
+        w.writerows(table)
     return table
 
 
@@ -641,7 +650,8 @@ def main(argv=None):
     ap.add_argument("--voxel", type=float, default=None,
                     help="voxel size (default %g x the smallest semi-axis)" % VOXEL_FRACTION)
     ap.add_argument("--compare", metavar="OUT.png", default=None,
-                    help="plot several runs against the shape instead")
+                    help="plot several runs against the shape instead (and write the table "
+                         "of means and standard errors to OUT.csv)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
     if args.compare:

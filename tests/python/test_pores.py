@@ -12,6 +12,7 @@
 - a real (small) deposit of examples/deposit/in.deposit: porosity from the dump against
   1 - phi of compute packing/ellipsoid, and the whole tool on its run folder.
 """
+import csv
 import json
 import math
 import os
@@ -302,3 +303,7 @@ def test_tool_on_the_run_folder(deposit):
     table = pores.compare([out, out], os.path.join(out, "compare.png"))
     assert table[0]["runs"] == 2 and table[0]["porosity"] == pytest.approx(saved["porosity"])
     assert os.path.exists(os.path.join(out, "compare.png"))
+    with open(os.path.join(out, "compare.csv")) as f:
+        (row,) = list(csv.DictReader(f))
+    assert int(row["runs"]) == 2 and float(row["porosity"]) == pytest.approx(saved["porosity"])
+    assert float(row["porosity_sem"]) == 0.0    # the same run twice
