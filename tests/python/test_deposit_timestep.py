@@ -1,8 +1,9 @@
 """The default deposit's time step is a stated fraction of the Hertz contact time.
 
 examples/deposit/in.deposit lets the pair find the contact time of the lightest pair the pour
-can make (a probe of the smallest size r = 0.5 (1 - dr)) at the speed of the drop,
-sqrt(2 g hdrop), and sets dt = dtfrac x that time:
+can make (a probe of the smallest size r = 0.5 (1 - dr)) at the largest impact speed, that of
+the released cloud's top falling to the ground, sqrt(vdrop^2 + 2 g z_top), and sets
+dt = dtfrac x that time:
 
 * dt equals dtfrac times the time the pair reports (its log line and compute pair's entry);
 * that time is the closed-form Hertz time of two of the smallest particles at that speed, and
@@ -39,11 +40,12 @@ def short_deposit(tmp_path, name, variables):
     dt = lmp.extract_global("dt")
     dtfrac = float(lmp.extract_variable("dtfrac"))
     tc = lmp.extract_variable("tc") if "dt" not in variables else None
+    ztop = lmp.extract_variable("pz1")
     masses = lmp.numpy.extract_atom("rmass")[:lmp.extract_global("nlocal")]
     lightest = float(masses.min())
     lmp.close()
     with open(out / "log.lammps") as f:
-        return dt, dtfrac, tc, f.read(), lightest, out
+        return dt, dtfrac, tc, f.read(), lightest, out, ztop
 
 
 def hertz_time(stiffness, m_eff, speed):
@@ -52,10 +54,11 @@ def hertz_time(stiffness, m_eff, speed):
 
 @pytest.mark.parametrize("name,variables", [
     ("default", {}),
-    ("stiff_low_drop", {"kn": "4.0e4", "hdrop": "12.0", "dr": "0.3", "eta": "2.0"}),
+    ("stiff_low_drop", {"kn": "4.0e4", "zcloud": "3.0", "vdrop": "2.0", "dr": "0.3",
+                        "eta": "2.0"}),
 ])
 def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, variables):
-    dt, dtfrac, tc, log, lightest, out = short_deposit(tmp_path, name, variables)
+    dt, dtfrac, tc, log, lightest, out, ztop = short_deposit(tmp_path, name, variables)
     reports = [(float(t), float(v)) for t, v in REPORT.findall(log)]
     assert reports, "the pair reported no contact time"
     probe_time, speed = reports[0]
@@ -64,12 +67,14 @@ def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, v
     assert dt == pytest.approx(dtfrac * tc, rel=1e-12)
     assert 0 < dtfrac < 0.1    # below the pair's warning threshold
     # the lightest pair the pour can make, meeting at the speed of the drop
-    hdrop = float(variables.get("hdrop", "36"))
     kn = float(variables.get("kn", "1.0e4"))
     rmin = 0.5 * (1 - float(variables.get("dr", "0.6")))
     mmin = 4.0 / 3.0 * math.pi * rmin**3
-    assert speed == pytest.approx(math.sqrt(2 * hdrop), rel=1e-5)
-    assert tc == pytest.approx(hertz_time(kn, mmin / 2, math.sqrt(2 * hdrop)), rel=1e-10)
+    if "zcloud" in variables:
+        assert ztop > float(variables["zcloud"])
+    vimpact = math.sqrt(float(variables.get("vdrop", "1.0"))**2 + 2 * ztop)
+    assert speed == pytest.approx(vimpact, rel=1e-5)
+    assert tc == pytest.approx(hertz_time(kn, mmin / 2, vimpact), rel=1e-10)
     # the poured particles are no lighter, so no later contact is shorter
     assert lightest >= mmin * (1 - 1e-12)
     assert all(t >= probe_time * (1 - 1e-5) for t, _ in reports)
@@ -85,7 +90,7 @@ def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, v
 
 
 def test_explicit_dt_is_used_as_given(tmp_path):
-    dt, _, _, log, _, _ = short_deposit(tmp_path, "explicit", {"dt": "2.5e-4"})
+    dt, _, _, log, _, _, _ = short_deposit(tmp_path, "explicit", {"dt": "2.5e-4"})
     assert dt == 2.5e-4
     assert not re.search(r"^time step ", log, re.M)    # no probe
     warnings = re.findall(r"^WARNING.*", log, re.M)

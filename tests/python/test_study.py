@@ -3,6 +3,7 @@
 seeds; retries that keep the logs of failed attempts; the Slurm profile in a dry run. Checks
 that the files exist, the numbers are sane and the PNGs are non-empty images."""
 import csv
+import json
 import math
 import os
 import shutil
@@ -47,6 +48,18 @@ def test_tiny_study_through_snakemake(tmp_path):
     for name in ("fig_density_lines.png", "fig_contact_shapes.png", "fig_orient_shapes.png"):
         assert_image(str(res / "figures" / name))
     assert_image(str(res / "picture.png"))
+    # the porous-media view of both deposits (sphere and prolate: on the lines) and its figure
+    assert_image(str(res / "pores.png"))
+    pores_rows = list(csv.DictReader(open(res / "pores.csv")))
+    assert sorted((float(r["eta"]), float(r["zeta"])) for r in pores_rows) == [(1.0, 1.0),
+                                                                               (1.5, 1.0)]
+    for r in pores_rows:
+        d = res / "points" / ("eta%g_zeta%g_dr0_N100_coulomb" % (float(r["eta"]),
+                                                                float(r["zeta"]))) / "s1"
+        saved = json.load(open(d / "pores.json"))
+        packing = deposit_run.read_packing(str(d / "packing.dat"))
+        assert abs(saved["porosity"] - (1 - packing["phi"])) < 1e-4    # the same slab
+        assert float(r["porosity"]) == saved["porosity"] and int(r["runs"]) == 1
     # results hold small files only: dumps, logs and checkpoints stay in the scratch folder
     kept = {f for _, _, files in os.walk(res) for f in files}
     assert not any(f.endswith((".dump", ".lammps", ".log")) or f.startswith("checkpoint")
@@ -58,12 +71,14 @@ def test_tiny_study_through_snakemake(tmp_path):
     config["sets"]["spheroids"]["seeds"] = [1, 2]
     (tmp_path / "more.yaml").write_text(yaml.safe_dump(config))
     text = run(snakemake(tmp_path, "-n", config=tmp_path / "more.yaml"), str(tmp_path), 120)
-    assert job_counts(text) == {"deposit": 2, "table": 1, "figures": 1, "all": 1}, text
+    assert job_counts(text) == {"deposit": 2, "table": 1, "figures": 1, "pores": 2,
+                                "pores_figure": 1, "all": 1}, text
     assert "seed=2" in text and "seed=1" not in text
     # a removed deposit is redone alone when the table is asked for again
     shutil.rmtree(res / "points" / "eta1.5_zeta1_dr0_N100_coulomb" / "s1")
     text = run(snakemake(tmp_path, "-n", "--forcerun", "table"), str(tmp_path), 120)
-    assert job_counts(text) == {"deposit": 1, "table": 1, "figures": 1, "all": 1}, text
+    assert job_counts(text) == {"deposit": 1, "table": 1, "figures": 1, "pores": 1,
+                                "pores_figure": 1, "all": 1}, text
 
 
 def test_interrupted_study_resumes_its_deposit(tmp_path):
@@ -157,7 +172,7 @@ def test_paper_study_definition(tmp_path):
         points.setdefault(key, set()).add(int(d["seed"]))
     # one time step for every deposit (the config's vars reach the runner)
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
-    assert commands and all("--var dt 0.0003" in line for line in commands)
+    assert commands and all("--var dt 0.0006" in line for line in commands)
     grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
     for e in grid:
         for z in grid:
