@@ -63,6 +63,7 @@ class PairGranularEllipsoid : public Pair {
   int freeze_group_bit;
 
   ContactList contacts;
+  // the history doubles of neighbour jj of i (PairCache layout)
   double *pair_history(int i, int jj) const;
 
   // per-atom state of owned + ghost atoms, rebuilt each force evaluation
@@ -70,9 +71,9 @@ class PairGranularEllipsoid : public Pair {
   std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
   void update_states();
 
-  // one pair: geometry from the pipeline, then the force law; returns true on contact
-  bool pair_force(int i, int j, int law, double *history, EllipsoidDep::ContactGeometry &geometry,
-                  EllipsoidDep::ContactForce &result);
+  // the force law on the contact geometry of atoms i and j (in contact: see in_contact())
+  EllipsoidDep::ContactForce pair_force(int i, int j, int law, double *history,
+                                        const EllipsoidDep::ContactGeometry &geometry) const;
 
   void allocate();
   int add_law(const EllipsoidDep::ForceLaw &law);
