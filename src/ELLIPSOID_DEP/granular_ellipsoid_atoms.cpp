@@ -7,7 +7,6 @@
 #include "atom.h"
 #include "atom_vec_ellipsoid.h"
 #include "error.h"
-#include "math_extra.h"
 
 #include <cstring>
 
@@ -64,12 +63,15 @@ void EllipsoidAtoms::inertia(int i, double *moments) const
   moments[2] = INERTIA * m * (s[0] * s[0] + s[1] * s[1]);
 }
 
-void EllipsoidAtoms::omega(int i, double *w) const
+EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotation) const
 {
-  double q[4], moments[3];
-  std::memcpy(q, quat(i), sizeof(q));
+  // as MathExtra::mq_to_omega, with the rotation the shape was built from
+  double moments[3];
   inertia(i, moments);
-  MathExtra::mq_to_omega(atom->angmom[i], q, moments, w);
+  Vec3 body =
+      rotation.transpose() * Vec3(atom->angmom[i][0], atom->angmom[i][1], atom->angmom[i][2]);
+  for (int k = 0; k < 3; k++) body[k] = moments[k] == 0.0 ? 0.0 : body[k] / moments[k];
+  return rotation * body;
 }
 
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
@@ -108,7 +110,7 @@ void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
 void EllipsoidAtoms::add_motion(int i, EllipsoidState &s) const
 {
   s.velocity = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
-  omega(i, s.omega.data());
+  s.omega = omega(i, s.shape.rotation);
   s.mass = atom->rmass[i];
 }
 
