@@ -27,7 +27,7 @@ namespace {
   void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const GapEval &ev,
                      ContactGeometry &g)
   {
-    fill_geometry(a, b, n, a.center + ev.man / ev.ha, b.center - ev.mbn / ev.hb, ev.d, g);
+    fill_geometry(a, b, n, a.center + ev.ua, b.center - ev.ub, ev.d, g);
   }
 
   // The fast mode's test: the angle between dir and the average of the unit surface gradients
@@ -112,8 +112,8 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
       overlap = (xi.dot(n0) >= 0.0 ? 1.0 : -1.0) * xi.norm();
     } else {
       const GapEval ev = evaluate_gap(a, b, dc, n0);
-      xa = a.center + ev.man / ev.ha;
-      xb = b.center - ev.mbn / ev.hb;
+      xa = a.center + ev.ua;
+      xb = b.center - ev.ub;
       overlap = ev.d;
     }
     if (gradients_agree(a, b, 0.5 * (xa + xb), n0, settings.correction_angle)) {
