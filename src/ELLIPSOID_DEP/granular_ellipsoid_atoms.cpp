@@ -107,6 +107,28 @@ void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
   add_motion(i, s);
 }
 
+bool EllipsoidAtoms::copy_state(int i, int k, const EllipsoidState &sk, const ShapeKey &kk,
+                                EllipsoidState &s, ShapeKey &key) const
+{
+  if (!kk.valid) return false;
+  const Vec3 center(atom->x[i][0], atom->x[i][1], atom->x[i][2]);
+  if (!EllipsoidDep::finite3(center)) return false;
+  double mi[3], mk[3];
+  inertia(i, mi);
+  inertia(k, mk);
+  const bool same = std::memcmp(quat(i), kk.values, 4 * sizeof(double)) == 0 &&
+      std::memcmp(shape(i), kk.values + 4, 3 * sizeof(double)) == 0 &&
+      std::memcmp(atom->v[i], atom->v[k], 3 * sizeof(double)) == 0 &&
+      std::memcmp(atom->angmom[i], atom->angmom[k], 3 * sizeof(double)) == 0 &&
+      std::memcmp(&atom->rmass[i], &atom->rmass[k], sizeof(double)) == 0 &&
+      std::memcmp(mi, mk, sizeof(mi)) == 0;
+  if (!same) return false;
+  s = sk;
+  s.shape.center = center;
+  key = kk;
+  return true;
+}
+
 void EllipsoidAtoms::add_motion(int i, EllipsoidState &s) const
 {
   s.velocity = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);

@@ -57,6 +57,11 @@ class EllipsoidAtoms {
   // state(i) into s, rebuilding the shape matrices only when key (that of the last build of
   // s) differs from atom i's quaternion and semi-axes: atoms that do not rotate skip them
   void update_state(int i, EllipsoidState &s, ShapeKey &key) const;
+  // state(i) into s as a copy of atom k's state sk (key kk) moved to i's centre, when i and k
+  // carry the same values bit for bit (bonus, velocity, angular momentum, mass, inertia), as a
+  // periodic image does: identical to update_state(i, s, key) then. false (s untouched) if not
+  bool copy_state(int i, int k, const EllipsoidState &sk, const ShapeKey &kk, EllipsoidState &s,
+                  ShapeKey &key) const;
   // velocity, angular velocity and mass of state, whose shape must be atom i's
   void add_motion(int i, EllipsoidState &state) const;
 

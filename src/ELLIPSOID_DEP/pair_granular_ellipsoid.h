@@ -14,6 +14,7 @@
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
 
+#include <unordered_map>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -69,6 +70,11 @@ class PairGranularEllipsoid : public Pair {
   // per-atom state of owned + ghost atoms, rebuilt each force evaluation
   std::vector<EllipsoidState> states;
   std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
+  // per ghost atom (index - nlocal): the owned atom of the same ID (a periodic image on this
+  // rank) or -1, found when the ghosts change (neighbour list builds)
+  std::vector<int> ghost_owner;
+  std::unordered_map<tagint, int> owned_index;    // scratch of find_ghost_owners()
+  void find_ghost_owners();
   void update_states();
 
   // the force law on the contact geometry of atoms i and j (in contact: see in_contact())

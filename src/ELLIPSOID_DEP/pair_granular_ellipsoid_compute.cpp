@@ -11,6 +11,7 @@
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "neigh_list.h"
+#include "neighbor.h"
 #include "update.h"
 
 #include <cstring>
@@ -18,13 +19,35 @@
 using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 
+void PairGranularEllipsoid::find_ghost_owners()
+{
+  const int nlocal = atom->nlocal, nghost = atom->nghost;
+  const tagint *tag = atom->tag;
+  ghost_owner.assign(nghost, -1);
+  if (!atom->tag_enable) return;
+  owned_index.clear();
+  for (int i = 0; i < nlocal; i++) owned_index[tag[i]] = i;
+  for (int g = 0; g < nghost; g++) {
+    const auto owner = owned_index.find(tag[nlocal + g]);
+    if (owner != owned_index.end()) ghost_owner[g] = owner->second;
+  }
+}
+
 void PairGranularEllipsoid::update_states()
 {
   const EllipsoidAtoms atoms(atom);
-  const int nall = atom->nlocal + atom->nghost;
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   states.resize(nall);
   state_keys.resize(nall);
-  for (int i = 0; i < nall; i++) atoms.update_state(i, states[i], state_keys[i]);
+  for (int i = 0; i < nlocal; i++) atoms.update_state(i, states[i], state_keys[i]);
+  // a ghost that is an image of an owned atom copies its state (checked value by value)
+  if (neighbor->ago == 0 || static_cast<int>(ghost_owner.size()) != atom->nghost)
+    find_ghost_owners();
+  for (int i = nlocal; i < nall; i++) {
+    const int k = ghost_owner[i - nlocal];
+    if (k < 0 || !atoms.copy_state(i, k, states[k], state_keys[k], states[i], state_keys[i]))
+      atoms.update_state(i, states[i], state_keys[i]);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
