@@ -27,7 +27,7 @@ namespace {
   void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const GapEval &ev,
                      ContactGeometry &g)
   {
-    fill_geometry(a, b, n, a.center + ev.man / ev.ha, b.center - ev.mbn / ev.hb, ev.d, g);
+    fill_geometry(a, b, n, a.center + ev.ua, b.center - ev.ub, ev.d, g);
   }
 
   // The fast mode's test: the angle between dir and the average of the unit surface gradients
@@ -72,13 +72,16 @@ ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b)
 ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
                                   const ContactSettings &settings, const Vec3 *warm_normal)
 {
+  // one result object returned on every path, so that it is built in the caller's place
+  ContactGeometry g;
   if (!valid(a) || !valid(b)) {
-    ContactGeometry g;
     g.status = Status::Degenerate;
     return g;
   }
-  if (a.sphere && b.sphere) return sphere_contact(a, b);
-  ContactGeometry g;
+  if (a.sphere && b.sphere) {
+    g = sphere_contact(a, b);
+    return g;
+  }
   const Vec3 dc = b.center - a.center;
   const double tol = settings.tolerance > 0.0 ? settings.tolerance : 1e-12;
   const int max_iter = std::max(settings.max_iterations, 1);
@@ -112,8 +115,8 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
       overlap = (xi.dot(n0) >= 0.0 ? 1.0 : -1.0) * xi.norm();
     } else {
       const GapEval ev = evaluate_gap(a, b, dc, n0);
-      xa = a.center + ev.man / ev.ha;
-      xb = b.center - ev.mbn / ev.hb;
+      xa = a.center + ev.ua;
+      xb = b.center - ev.ub;
       overlap = ev.d;
     }
     if (gradients_agree(a, b, 0.5 * (xa + xb), n0, settings.correction_angle)) {

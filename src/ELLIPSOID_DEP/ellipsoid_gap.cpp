@@ -89,12 +89,13 @@ GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, 
   r.iterations = 0;
   r.converged = false;
   const double size = std::min(min_axis(a), min_axis(b));
+  const double dc_norm = dc.norm();
   for (int it = 0; it < max_iter; ++it) {
     const GapEval &ev = r.ev;
     const double gn = ev.grad.dot(r.n);
     const Vec3 gt = ev.grad - gn * r.n;
     // round-off floor: d and grad carry ~eps*(|dc| + h) absolute error from cancellation
-    const double floor = 32.0 * kEps * (dc.norm() + ev.ha + ev.hb);
+    const double floor = 32.0 * kEps * (dc_norm + ev.ha + ev.hb);
     const double gtn = gt.norm();
     // A start that is already stationary may be a saddle (symmetric configurations, e.g. the
     // centre line in the mid-plane of a disc): only then is the curvature checked below.
@@ -105,7 +106,7 @@ GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, 
     }
     Vec3 t1, t2;
     tangent_basis(r.n, t1, t2);
-    const Vec3 ua = ev.man / ev.ha, ub = ev.mbn / ev.hb;
+    const Vec3 &ua = ev.ua, &ub = ev.ub;
     const Vec3 at1 = a.inverse_form * t1, at2 = a.inverse_form * t2;
     const Vec3 bt1 = b.inverse_form * t1, bt2 = b.inverse_form * t2;
     const double ua1 = ua.dot(t1), ua2 = ua.dot(t2), ub1 = ub.dot(t1), ub2 = ub.dot(t2);
@@ -204,7 +205,7 @@ GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, 
   }
   // final convergence check after the last step
   const Vec3 gt = r.ev.grad - r.ev.grad.dot(r.n) * r.n;
-  const double floor = 32.0 * kEps * (dc.norm() + r.ev.ha + r.ev.hb);
+  const double floor = 32.0 * kEps * (dc_norm + r.ev.ha + r.ev.hb);
   r.converged = gt.norm() <= std::max(tol * size, floor);
   return r;
 }

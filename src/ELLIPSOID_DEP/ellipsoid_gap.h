@@ -31,18 +31,19 @@ namespace EllipsoidDep {
 // The gap function and what it is made of, at one unit n.
 struct GapEval {
   double ha, hb, d;    // sqrt(n^T M_A n), sqrt(n^T M_B n), d(n)
-  Vec3 man, mbn;       // M_A n, M_B n
+  Vec3 ua, ub;         // M_A n / h_A = s_A(n) - c_A, M_B n / h_B = c_B - s_B(-n)
   Vec3 grad;           // gradient of the degree-1 extension = p_A - p_B
 };
 
 inline GapEval evaluate_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, const Vec3 &n)
 {
   GapEval e;
-  e.man = a.inverse_form * n;
-  e.mbn = b.inverse_form * n;
-  e.ha = std::sqrt(std::max(n.dot(e.man), std::numeric_limits<double>::min()));
-  e.hb = std::sqrt(std::max(n.dot(e.mbn), std::numeric_limits<double>::min()));
-  e.grad = e.man / e.ha + e.mbn / e.hb - dc;
+  const Vec3 man = a.inverse_form * n, mbn = b.inverse_form * n;
+  e.ha = std::sqrt(std::max(n.dot(man), std::numeric_limits<double>::min()));
+  e.hb = std::sqrt(std::max(n.dot(mbn), std::numeric_limits<double>::min()));
+  e.ua = man / e.ha;
+  e.ub = mbn / e.hb;
+  e.grad = e.ua + e.ub - dc;
   e.d = e.ha + e.hb - n.dot(dc);
   return e;
 }

@@ -110,6 +110,12 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
                               const PipelineSettings &settings, double *cache,
                               PipelineCounters &counters);
 
+// A result of evaluate_pair that forces act on: Overlapping, or NotConverged (usable geometry).
+inline bool in_contact(const ContactGeometry &g)
+{
+  return g.status == Status::Overlapping || g.status == Status::NotConverged;
+}
+
 }    // namespace EllipsoidDep
 
 #endif

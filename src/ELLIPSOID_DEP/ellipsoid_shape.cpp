@@ -25,6 +25,24 @@ namespace {
     }
     return r;
   }
+
+  // R diag(s^2) R^T = U U^T for the scaled columns U = R diag(s): entry (i, j) is the sum of
+  // U_ik U_jk over k, and the same sum for (j, i), so both triangles agree bit for bit
+  inline Mat3 rotated_diagonal(const Mat3 &r, const Vec3 &s)
+  {
+    const Mat3 u = r * s.asDiagonal();
+    auto entry = [&u](int i, int j) {
+      return u(i, 0) * u(j, 0) + u(i, 1) * u(j, 1) + u(i, 2) * u(j, 2);
+    };
+    Mat3 m;
+    m(0, 0) = entry(0, 0);
+    m(1, 1) = entry(1, 1);
+    m(2, 2) = entry(2, 2);
+    m(0, 1) = m(1, 0) = entry(0, 1);
+    m(0, 2) = m(2, 0) = entry(0, 2);
+    m(1, 2) = m(2, 1) = entry(1, 2);
+    return m;
+  }
 }    // namespace
 
 Mat4 Ellipsoid::homogeneous() const
@@ -49,13 +67,8 @@ Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &s
   e.center = center;
   e.rotation = rotation;
   e.semi_axes = semi_axes;
-  const Vec3 inv2 = semi_axes.cwiseProduct(semi_axes).cwiseInverse();
-  const Vec3 sq = semi_axes.cwiseProduct(semi_axes);
-  e.form = rotation * inv2.asDiagonal() * rotation.transpose();
-  e.inverse_form = rotation * sq.asDiagonal() * rotation.transpose();
-  // exact symmetry so that both triangles agree bit for bit
-  e.form = 0.5 * (e.form + e.form.transpose()).eval();
-  e.inverse_form = 0.5 * (e.inverse_form + e.inverse_form.transpose()).eval();
+  e.form = rotated_diagonal(rotation, semi_axes.cwiseInverse());
+  e.inverse_form = rotated_diagonal(rotation, semi_axes);
   e.bounding_radius = bounding_radius_of(semi_axes);
   const double lo = semi_axes.minCoeff();
   e.sphere = (e.bounding_radius - lo) <= 1e-14 * e.bounding_radius;

@@ -7,8 +7,8 @@
 #include "atom.h"
 #include "atom_vec_ellipsoid.h"
 #include "error.h"
-#include "math_extra.h"
 
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -64,12 +64,15 @@ void EllipsoidAtoms::inertia(int i, double *moments) const
   moments[2] = INERTIA * m * (s[0] * s[0] + s[1] * s[1]);
 }
 
-void EllipsoidAtoms::omega(int i, double *w) const
+EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotation) const
 {
-  double q[4], moments[3];
-  std::memcpy(q, quat(i), sizeof(q));
+  // as MathExtra::mq_to_omega, with the rotation the shape was built from
+  double moments[3];
   inertia(i, moments);
-  MathExtra::mq_to_omega(atom->angmom[i], q, moments, w);
+  Vec3 body =
+      rotation.transpose() * Vec3(atom->angmom[i][0], atom->angmom[i][1], atom->angmom[i][2]);
+  for (int k = 0; k < 3; k++) body[k] = moments[k] == 0.0 ? 0.0 : body[k] / moments[k];
+  return rotation * body;
 }
 
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
@@ -86,29 +89,73 @@ EllipsoidState EllipsoidAtoms::state(int i) const
   return s;
 }
 
+namespace {
+// Whether a state s built from key holds for the bonus values (quaternion, semi-axes): they are
+// equal bit for bit, or s is a valid sphere (built in the identity frame) of the same semi-axes
+// and the quaternion is one make_ellipsoid accepts (finite, non-zero norm).
+bool built_from(const EllipsoidState &s, const ShapeKey &key, const double *values)
+{
+  if (!key.valid) return false;
+  if (std::memcmp(values, key.values, 7 * sizeof(double)) == 0) return true;
+  if (!s.shape.sphere || !s.shape.finite) return false;
+  if (std::memcmp(values + 4, key.values + 4, 3 * sizeof(double)) != 0) return false;
+  const double q2 =
+      values[0] * values[0] + values[1] * values[1] + values[2] * values[2] + values[3] * values[3];
+  return q2 > 0.0 && std::isfinite(q2);
+}
+}    // namespace
+
 void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
 {
   double values[7];
   std::memcpy(values, quat(i), 4 * sizeof(double));
   std::memcpy(values + 4, shape(i), 3 * sizeof(double));
   const Vec3 center(atom->x[i][0], atom->x[i][1], atom->x[i][2]);
-  if (key.valid && std::memcmp(values, key.values, sizeof(values)) == 0) {
+  if (built_from(s, key, values)) {
     // a valid key was built (and since then moved) with a finite centre, so finite holds
     // the validity of the shape alone; a non-finite centre invalidates the state and the key
     s.shape.center = center;
     if (!EllipsoidDep::finite3(center)) s.shape.finite = key.valid = false;
   } else {
-    s.shape = EllipsoidDep::make_ellipsoid(center, values, Vec3(values[4], values[5], values[6]));
+    const Vec3 semi_axes(values[4], values[5], values[6]);
+    s.shape = EllipsoidDep::make_ellipsoid(center, values, semi_axes);
+    // a sphere's contacts do not depend on its orientation: in the identity frame its state
+    // holds while it spins (the angular velocity is then L / I)
+    if (s.shape.sphere && s.shape.finite)
+      s.shape = EllipsoidDep::make_ellipsoid(center, EllipsoidDep::Mat3::Identity(), semi_axes);
     std::memcpy(key.values, values, sizeof(values));
     key.valid = EllipsoidDep::finite3(center);
   }
   add_motion(i, s);
 }
 
+bool EllipsoidAtoms::copy_state(int i, int k, const EllipsoidState &sk, const ShapeKey &kk,
+                                EllipsoidState &s, ShapeKey &key) const
+{
+  const Vec3 center(atom->x[i][0], atom->x[i][1], atom->x[i][2]);
+  if (!EllipsoidDep::finite3(center)) return false;
+  double mi[3], mk[3];
+  inertia(i, mi);
+  inertia(k, mk);
+  double values[7];
+  std::memcpy(values, quat(i), 4 * sizeof(double));
+  std::memcpy(values + 4, shape(i), 3 * sizeof(double));
+  const bool same = built_from(sk, kk, values) &&
+      std::memcmp(atom->v[i], atom->v[k], 3 * sizeof(double)) == 0 &&
+      std::memcmp(atom->angmom[i], atom->angmom[k], 3 * sizeof(double)) == 0 &&
+      std::memcmp(&atom->rmass[i], &atom->rmass[k], sizeof(double)) == 0 &&
+      std::memcmp(mi, mk, sizeof(mi)) == 0;
+  if (!same) return false;
+  s = sk;
+  s.shape.center = center;
+  key = kk;
+  return true;
+}
+
 void EllipsoidAtoms::add_motion(int i, EllipsoidState &s) const
 {
   s.velocity = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
-  omega(i, s.omega.data());
+  s.omega = omega(i, s.shape.rotation);
   s.mass = atom->rmass[i];
 }
 

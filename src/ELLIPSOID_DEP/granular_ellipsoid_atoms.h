@@ -50,13 +50,19 @@ class EllipsoidAtoms {
     return EllipsoidDep::bounding_radius_of(EllipsoidDep::Vec3(s[0], s[1], s[2]));
   }
   void inertia(int i, double *moments) const;    // principal moments (body frame)
-  void omega(int i, double *w) const;            // angular velocity (box frame)
+  // angular velocity (box frame) from the angular momentum, rotation: body -> box of atom i
+  EllipsoidDep::Vec3 omega(int i, const EllipsoidDep::Mat3 &rotation) const;
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
   EllipsoidState state(int i) const;
   // state(i) into s, rebuilding the shape matrices only when key (that of the last build of
   // s) differs from atom i's quaternion and semi-axes: atoms that do not rotate skip them
   void update_state(int i, EllipsoidState &s, ShapeKey &key) const;
-  // velocity, angular velocity and mass of state (for callers that build the shape first)
+  // state(i) into s as a copy of atom k's state sk (key kk) moved to i's centre, when i and k
+  // carry the same values bit for bit (bonus, velocity, angular momentum, mass, inertia), as a
+  // periodic image does: identical to update_state(i, s, key) then. false (s untouched) if not
+  bool copy_state(int i, int k, const EllipsoidState &sk, const ShapeKey &kk, EllipsoidState &s,
+                  ShapeKey &key) const;
+  // velocity, angular velocity and mass of state, whose shape must be atom i's
   void add_motion(int i, EllipsoidState &state) const;
 
   Atom *atom;

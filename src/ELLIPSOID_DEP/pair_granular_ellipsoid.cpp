@@ -378,6 +378,7 @@ void *PairGranularEllipsoid::extract(const char *name, int &dim)
 double PairGranularEllipsoid::memory_usage()
 {
   return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
-                             state_keys.capacity() * sizeof(ShapeKey)) +
+                             state_keys.capacity() * sizeof(ShapeKey) +
+                             ghost_owner.capacity() * sizeof(int)) +
       contacts.memory_usage();
 }

@@ -14,6 +14,7 @@
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
 
+#include <unordered_map>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -63,16 +64,22 @@ class PairGranularEllipsoid : public Pair {
   int freeze_group_bit;
 
   ContactList contacts;
+  // the history doubles of neighbour jj of i (PairCache layout)
   double *pair_history(int i, int jj) const;
 
   // per-atom state of owned + ghost atoms, rebuilt each force evaluation
   std::vector<EllipsoidState> states;
   std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
+  // per ghost atom (index - nlocal): the owned atom of the same ID (a periodic image on this
+  // rank) or -1, found when the ghosts change (neighbour list builds)
+  std::vector<int> ghost_owner;
+  std::unordered_map<tagint, int> owned_index;    // scratch of find_ghost_owners()
+  void find_ghost_owners();
   void update_states();
 
-  // one pair: geometry from the pipeline, then the force law; returns true on contact
-  bool pair_force(int i, int j, int law, double *history, EllipsoidDep::ContactGeometry &geometry,
-                  EllipsoidDep::ContactForce &result);
+  // the force law on the contact geometry of atoms i and j (in contact: see in_contact())
+  EllipsoidDep::ContactForce pair_force(int i, int j, int law, double *history,
+                                        const EllipsoidDep::ContactGeometry &geometry) const;
 
   void allocate();
   int add_law(const EllipsoidDep::ForceLaw &law);

@@ -11,6 +11,7 @@
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "neigh_list.h"
+#include "neighbor.h"
 #include "update.h"
 
 #include <cstring>
@@ -18,24 +19,42 @@
 using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 
+void PairGranularEllipsoid::find_ghost_owners()
+{
+  const int nlocal = atom->nlocal, nghost = atom->nghost;
+  const tagint *tag = atom->tag;
+  ghost_owner.assign(nghost, -1);
+  if (!atom->tag_enable) return;
+  owned_index.clear();
+  for (int i = 0; i < nlocal; i++) owned_index[tag[i]] = i;
+  for (int g = 0; g < nghost; g++) {
+    const auto owner = owned_index.find(tag[nlocal + g]);
+    if (owner != owned_index.end()) ghost_owner[g] = owner->second;
+  }
+}
+
 void PairGranularEllipsoid::update_states()
 {
   const EllipsoidAtoms atoms(atom);
-  const int nall = atom->nlocal + atom->nghost;
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   states.resize(nall);
   state_keys.resize(nall);
-  for (int i = 0; i < nall; i++) atoms.update_state(i, states[i], state_keys[i]);
+  for (int i = 0; i < nlocal; i++) atoms.update_state(i, states[i], state_keys[i]);
+  // a ghost that is an image of an owned atom copies its state (checked value by value)
+  if (neighbor->ago == 0 || static_cast<int>(ghost_owner.size()) != atom->nghost)
+    find_ghost_owners();
+  for (int i = nlocal; i < nall; i++) {
+    const int k = ghost_owner[i - nlocal];
+    if (k < 0 || !atoms.copy_state(i, k, states[k], state_keys[k], states[i], state_keys[i]))
+      atoms.update_state(i, states[i], state_keys[i]);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
 
-bool PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
-                                       ContactGeometry &geometry, ContactForce &result)
+ContactForce PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
+                                               const ContactGeometry &geometry) const
 {
-  geometry = evaluate_pair(states[i].shape, states[j].shape, pipeline, history, counters);
-  if (geometry.status != Status::Overlapping && geometry.status != Status::NotConverged)
-    return false;
-
   const ForceLaw &force_law = laws[law];
   const ContactMotion motion =
       contact_motion(states[i], states[j], geometry.point, atom->mask[i] & freeze_group_bit,
@@ -44,13 +63,10 @@ bool PairGranularEllipsoid::pair_force(int i, int j, int law, double *history,
   // as pair granular does, so a restart reproduces the forces it was written with
   const TangentialHistory tangential(
       force_law.history_size() > 0 ? PairCache(history).tangential() : nullptr, history_update);
-  result = force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential.get());
-  return true;
+  return force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential.get());
 }
 
-/* ----------------------------------------------------------------------
-   the history doubles of neighbour jj of i (PairCache layout)
-------------------------------------------------------------------------- */
+/* ---------------------------------------------------------------------- */
 
 double *PairGranularEllipsoid::pair_history(int i, int jj) const
 {
@@ -96,16 +112,16 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
         continue;
       }
 
-      ContactGeometry geometry;
-      ContactForce result;
-      const bool contact = pair_force(i, j, law_index[type[i]][type[j]], history, geometry, result);
+      const ContactGeometry geometry =
+          evaluate_pair(states[i].shape, states[j].shape, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
       touch[jj] = cache.in_use() ? 1 : 0;
-      if (!contact) {
+      if (!in_contact(geometry)) {
         if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
         continue;
       }
 
+      const ContactForce result = pair_force(i, j, law_index[type[i]][type[j]], history, geometry);
       const double *fi = result.force_i.data();
       f[i][0] += fi[0];
       f[i][1] += fi[1];
@@ -173,15 +189,15 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
         break;
       }
   }
+  const PipelineCounters before = counters;
+  const ContactGeometry geometry =
+      evaluate_pair(states[i].shape, states[j].shape, pipeline, history.data(), counters);
+  counters = before;    // single() is a look, not an evaluation
+  if (!in_contact(geometry)) return 0.0;
   const bool saved = history_update;
   history_update = false;
-  const PipelineCounters before = counters;
-  ContactGeometry geometry;
-  ContactForce result;
-  const bool contact = pair_force(i, j, law_index[itype][jtype], history.data(), geometry, result);
-  counters = before;    // single() is a look, not an evaluation
+  const ContactForce result = pair_force(i, j, law_index[itype][jtype], history.data(), geometry);
   history_update = saved;
-  if (!contact) return 0.0;
 
   svector[0] = geometry.overlap;
   for (int d = 0; d < 3; d++) {
