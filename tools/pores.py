@@ -591,8 +591,9 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True):
 SHAPE_LINES = (("eta = zeta", lambda e, z: e == z, 0, "o-"),
                ("prolate, zeta = 1 (vs eta)", lambda e, z: z == 1.0, 0, "s--"),
                ("oblate, eta = 1 (vs zeta)", lambda e, z: e == 1.0, 1, "^-."))
-COMPARED = (("porosity", "porosity"), ("specific_surface", r"specific surface $S_v$"),
-            ("kozeny_carman_permeability", r"$k_{KC} = \epsilon^3 / (5 S_v^2)$"))
+COMPARED = (("porosity", "porosity"),
+            ("specific_surface", r"specific surface $S_v$ (1 / length)"),
+            ("kozeny_carman_permeability", r"$k_{KC} = \epsilon^3 / (5 S_v^2)$ (length$^2$)"))
 
 
 def compare(run_dirs, out_png, voxel=None, quiet=False):
