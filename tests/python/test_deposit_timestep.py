@@ -2,7 +2,7 @@
 
 examples/deposit/in.deposit lets the pair find the contact time of the lightest pair the pour
 can make (a probe of the smallest size r = 0.5 (1 - dr)) at the largest impact speed, that of
-the released cloud's top falling to the ground, sqrt(vdrop^2 + 2 g z_top), and sets
+the pour region's top falling to the ground, sqrt(vdrop^2 + 2 g z_top), and sets
 dt = dtfrac x that time:
 
 * dt equals dtfrac times the time the pair reports (its log line and compute pair's entry);
