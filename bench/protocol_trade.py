@@ -6,7 +6,7 @@
 
 Runs the default deposit (examples/deposit/in.deposit through tools/deposit_run.py, one rank,
 `nice -n 10`) for a stiff, slow reference and for variants that change ONE knob of it (normal
-stiffness kn, damping K, time step, drop height zcloud, insertion volume fraction fins), each
+stiffness kn, damping K, time step, drop height zpour, insertion volume fraction fins), each
 for every seed, and today's and the new defaults. A run whose log already reached its rest
 criterion, or that another driver is running (its running.pid), is not run again, so the
 driver resumes where it stopped and several drivers can share a grid. The rest criterion ketol
@@ -34,7 +34,7 @@ RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
 
 # The reference: stiff (overlaps at rest ~0.6x today's), slow (dt ~1/50 of the shortest
 # contact time), strict rest criterion; the pour as today.
-REFERENCE = {"kn": 2.0e4, "K": 200.0, "dt": 1.5e-4, "zcloud": 0.0, "fins": 0.2, "ketol": 1e-5}
+REFERENCE = {"kn": 2.0e4, "K": 200.0, "dt": 1.5e-4, "zpour": 0.0, "fins": 0.2, "ketol": 1e-5}
 # One knob off the reference per variant. kn variants keep the reference's dt / contact time
 # (t_c ~ kn^(-2/5) for Hertz), so a softer spring buys larger steps. The variants stop at
 # today's rest criterion 1e-4 (the ketol rows, read off the reference, show what that costs
@@ -45,7 +45,7 @@ VARIANTS = [
     ("dt 6e-4", {"dt": 6.0e-4}),
     ("fins 0.4", {"fins": 0.4}),
     ("kn 1e4", {"kn": 1.0e4, "dt": 1.5e-4 * 2.0 ** 0.4}),
-    ("zcloud 1", {"zcloud": 1.0}),    # the cloud starts 1 d above the ground: a lower drop
+    ("zpour 1", {"zpour": 1.0}),    # the cloud starts 1 d above the ground: a lower drop
     ("K 400", {"K": 400.0}),
 ]
 # looser rest criteria read off the reference's runs
@@ -60,12 +60,12 @@ CPU_USE = re.compile(r"^(\S+)% CPU use with")
 # derives it, dtfrac x the Hertz contact time of its lightest pair at the drop's speed).
 DEFAULTS = [
     ("before: dt 3e-4, ketol 1e-4",
-     {"kn": 1.0e4, "K": 200.0, "dt": 3.0e-4, "zcloud": 0.0, "fins": 0.2, "ketol": 1e-4}),
+     {"kn": 1.0e4, "K": 200.0, "dt": 3.0e-4, "zpour": 0.0, "fins": 0.2, "ketol": 1e-4}),
     ("after: dtfrac 0.03, ketol 1e-3",
-     {"kn": 1.0e4, "K": 200.0, "dt": 0, "dtfrac": 0.03, "zcloud": 0.0, "fins": 0.2,
+     {"kn": 1.0e4, "K": 200.0, "dt": 0, "dtfrac": 0.03, "zpour": 0.0, "fins": 0.2,
       "ketol": 1e-3}),
     ("after: dtfrac 0.075, ketol 1e-3",
-     {"kn": 1.0e4, "K": 200.0, "dt": 0, "dtfrac": 0.075, "zcloud": 0.0, "fins": 0.2,
+     {"kn": 1.0e4, "K": 200.0, "dt": 0, "dtfrac": 0.075, "zpour": 0.0, "fins": 0.2,
       "ketol": 1e-3}),
 ]
 
@@ -116,7 +116,7 @@ def run_one(out, n, seed, config):
     cmd = ["nice", "-n", "10", sys.executable, RUNNER, "--np", "1", "--N", str(n),
            "--seed", str(seed), "--out", out, "--no-image", "--no-plots", "--quiet",
            "--ketol", repr(config["ketol"])]
-    for name in ("kn", "K", "dt", "dtfrac", "zcloud", "fins"):
+    for name in ("kn", "K", "dt", "dtfrac", "zpour", "fins"):
         if name in config:
             cmd += ["--var", name, repr(config[name])]
     with open(os.path.join(out, "driver.txt"), "w") as log:
@@ -253,13 +253,13 @@ def table(args, runs, grid):
                 label = name if ketol == c["ketol"] else \
                     "ketol %g" % ketol if name == "reference" else "%s, read at ketol %g" % (
                         name, ketol)
-                per_run.append((label, ketol, s, run_dt(out, c), c["kn"], c["K"], c["zcloud"],
+                per_run.append((label, ketol, s, run_dt(out, c), c["kn"], c["K"], c["zpour"],
                                 c["fins"], int(steps), cpu, phi, z))
     os.makedirs(os.path.join(ROOT, "bench", "results"), exist_ok=True)
     csv_path = os.path.join(ROOT, "bench", "results", "protocol_trade_N%d.csv" % args.N)
     with open(csv_path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["config", "ketol", "seed", "dt", "kn", "K", "zcloud", "fins", "steps",
+        w.writerow(["config", "ketol", "seed", "dt", "kn", "K", "zpour", "fins", "steps",
                     "cpu_seconds", "phi", "Z"])
         for r in per_run:
             w.writerow(list(r[:9]) + ["%.1f" % r[9], "%.6f" % r[10], "%.6f" % r[11]])

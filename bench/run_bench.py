@@ -524,7 +524,7 @@ def run_deposit(out, n, np, seed):
     subprocess.run(cmd, cwd=work, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
     wall = time.time() - t0
     text = open(os.path.join(work, "log.lammps")).read()
-    steps = re.search(r"at rest after (\d+) steps", text)
+    steps = re.search(r"^ELLIPSOID_DEP: at rest after (\d+) steps", text, re.M)
     res = re.search(r"^RESULT phi ([\d.eE+-]+) Z ([\d.eE+-]+)", text, re.M)
     if not (steps and res):
         raise RuntimeError(f"deposit did not finish: {work}/log.lammps")

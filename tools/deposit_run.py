@@ -426,7 +426,7 @@ def main(argv=None):
           % (pk["Z"], pk["Z_no_rattlers"], int(pk["rattlers"])))
     if pk.get("at_rest", 1) == 0:
         print("  WARNING: the deposit is NOT at rest (maxchunks ran out): phi and Z are of a "
-              "moving packing; rerun with a larger --var maxchunks or --continue")
+              "moving packing; run it again with a larger --var maxchunks (it starts anew)")
     print("  files in %s:" % out)
     notes = {"log.lammps": "LAMMPS log", "screen.txt": "LAMMPS screen output",
              SETTINGS_FILE: "the run's settings (for --resume)",

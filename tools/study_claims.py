@@ -3,14 +3,16 @@
 
     ./ellipsoid-dep python tools/study_claims.py examples/study/results [--law coulomb] [--N 3000]
 
-Reads table.csv, deposits.csv and the histograms of every deposit and writes claims.json into
-the results folder (and prints it as markdown):
+Reads deposits.csv (tools/study_table.py) and the histograms of every deposit and writes
+claims.json into the results folder (and prints it as markdown):
 
 * `maxima`: for the diagonal eta = zeta and the prolate (zeta = 1, vs eta) and oblate
   (eta = 1, vs zeta) lines at delta_r = 0, the position and height of the density maximum:
   a parabola through the highest point and its neighbours (five points where there are
-  five), with its uncertainty from a bootstrap over seeds (points with one seed draw from the
-  pooled seed-to-seed standard deviation of the points with more);
+  five), with its uncertainty from a parametric bootstrap: every point's mean is redrawn
+  from a normal distribution with the seed-to-seed standard deviation pooled over the points
+  with two seeds or more, divided by sqrt(its seeds) (no uncertainty while no point has two
+  seeds; fits whose vertex leaves the window are dropped and counted);
 * `symmetry`: phi(eta, zeta) - phi(zeta, eta) over the map's pairs, its mean, and chi^2 per
   pair against the standard errors (about 1 when the map is symmetric within its errors);
 * `crossings`: the angle theta in (0, pi/2) at which a shape's P(Omega(theta)) of contact
@@ -72,20 +74,17 @@ def line_maximum(points, rng):
         return {"at_edge": False, "x_highest": points[k][0], "phi_highest": means[k],
                 "fit": None}
     sd = pooled_sd([v for _, v in points])
+    means_w = np.array([float(np.mean(v)) for _, v in window])
+    errors_w = np.array([sd / math.sqrt(len(v)) for _, v in window]) if sd is not None else None
     draws = []
     for _ in range(BOOTSTRAP if sd is not None else 0):
-        y = []
-        for _, v in window:
-            if len(v) > 1:
-                y.append(float(np.mean(rng.choice(v, len(v)))))
-            else:
-                y.append(v[0] + rng.normal(0.0, sd))
-        fit = fit_maximum(x, y)
+        fit = fit_maximum(x, means_w + rng.normal(0.0, errors_w))
         if fit is not None and x[0] <= fit[0] <= x[-1]:
             draws.append(fit)
     out = {"at_edge": False, "x_highest": points[k][0], "phi_highest": means[k],
            "x_max": float(best[0]), "phi_max": float(best[1]), "window": x.tolist(),
-           "seed_sd": sd, "bootstrap_kept": len(draws)}
+           "seed_sd": sd, "bootstrap_draws": BOOTSTRAP if sd is not None else 0,
+           "bootstrap_kept": len(draws)}
     if draws:
         d = np.array(draws)
         out["x_max_sd"] = float(d[:, 0].std(ddof=1))

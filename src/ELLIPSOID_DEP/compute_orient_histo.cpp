@@ -39,9 +39,10 @@ using namespace LAMMPS_NS;
 using MathConst::MY_PI;
 
 namespace {
+const char *const MISSING_SHAPE = "Compute orient/histo: every atom of the group must have a shape";
 const char *const COLNAMES[ComputeOrientHisto::NVALUES] = {"S",   "nx",   "ny", "nz",
                                                            "Qzz", "cos2", "N"};
-}
+}    // namespace
 
 /* ----------------------------------------------------------------------
    one extra sum: the atoms of the group without a shape
@@ -149,8 +150,7 @@ void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
 
 void ComputeOrientHisto::finish_vector(const double *moments, double npart, const double *extra)
 {
-  if (extra[0] > 0.0)
-    error->all(FLERR, "Compute orient/histo: every atom of the group must have a shape");
+  if (extra[0] > 0.0) error->all(FLERR, MISSING_SHAPE);
 
   for (int k = 0; k < NVALUES; k++) vector[k] = 0.0;
   vector[PARTICLES] = npart;
@@ -204,8 +204,7 @@ void ComputeOrientHisto::compute_peratom()
   }
   int any_missing = 0;
   MPI_Allreduce(&missing, &any_missing, 1, MPI_INT, MPI_MAX, world);
-  if (any_missing)
-    error->all(FLERR, "Compute orient/histo: every atom of the group must have a shape");
+  if (any_missing) error->all(FLERR, MISSING_SHAPE);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -268,12 +268,15 @@ def test_orient_known_directions():
     lmp.commands_string("""
         compute ol all orient/histo bins 6
         compute om all orient/histo axis middle bins 6
+        group half id <= 108
+        compute oh half orient/histo bins 6 zlo 100 zhi 200
         """)
     lmp.command("run 0")
     a, v = array(lmp, "ol"), vector(lmp, "ol")
     vm = vector(lmp, "om")
     tilt = lmp.numpy.extract_compute("ol", LMP_STYLE_ATOM, LMP_TYPE_VECTOR).copy()
     tilt_m = lmp.numpy.extract_compute("om", LMP_STYLE_ATOM, LMP_TYPE_VECTOR).copy()
+    tilt_h = lmp.numpy.extract_compute("oh", LMP_STYLE_ATOM, LMP_TYPE_VECTOR).copy()
     ids = lmp.numpy.extract_atom("id")[:len(parts)].copy()
     lmp.close()
     n = len(parts)
@@ -293,6 +296,11 @@ def test_orient_known_directions():
     # per atom: the angle of the chosen axis to the vertical, in id order
     np.testing.assert_allclose(tilt[np.argsort(ids)], np.arccos(np.abs(u[:, 2])), atol=1e-12)
     np.testing.assert_allclose(tilt_m[np.argsort(ids)], np.arccos(np.abs(um[:, 2])), atol=1e-12)
+    # a group and a slab that holds no atom: the group's atoms as before, the others 0
+    half = np.sort(ids) <= 108
+    by_id = tilt_h[np.argsort(ids)]
+    np.testing.assert_allclose(by_id[half], np.arccos(np.abs(u[half, 2])), atol=1e-12)
+    assert np.all(by_id[~half] == 0.0) and half.sum() == 108
 
     # all long axes vertical
     R = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])

@@ -54,7 +54,7 @@ def hertz_time(stiffness, m_eff, speed):
 
 @pytest.mark.parametrize("name,variables", [
     ("default", {}),
-    ("stiff_low_drop", {"kn": "4.0e4", "zcloud": "3.0", "vdrop": "2.0", "dr": "0.3",
+    ("stiff_low_drop", {"kn": "4.0e4", "zpour": "3.0", "vdrop": "2.0", "dr": "0.3",
                         "eta": "2.0"}),
 ])
 def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, variables):
@@ -70,9 +70,15 @@ def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, v
     kn = float(variables.get("kn", "1.0e4"))
     rmin = 0.5 * (1 - float(variables.get("dr", "0.6")))
     mmin = 4.0 / 3.0 * math.pi * rmin**3
-    if "zcloud" in variables:
-        assert ztop > float(variables["zcloud"])
-    vimpact = math.sqrt(float(variables.get("vdrop", "1.0"))**2 + 2 * ztop)
+    # the region's top from its stated geometry (doc/fix_pour_ellipsoid.rst, "Protocol")
+    n, fins = 100, float(variables.get("fins", "0.2"))
+    side = max(5.0, 0.3 * math.sqrt(n))
+    eta, zeta = float(variables.get("eta", "1.4")), float(variables.get("zeta", "1.8"))
+    dr = float(variables.get("dr", "0.6"))
+    bottom = float(variables.get("zpour", "0")) or 1 + n * math.pi / 6 / (0.6 * side**2)
+    top = bottom + n * math.pi / 6 / (fins * side**2) + (1 + dr) * (eta**2 * zeta)**(1 / 3)
+    assert ztop == pytest.approx(top, rel=1e-12)
+    vimpact = math.sqrt(float(variables.get("vdrop", "1.0"))**2 + 2 * top)
     assert speed == pytest.approx(vimpact, rel=1e-5)
     assert tc == pytest.approx(hertz_time(kn, mmin / 2, vimpact), rel=1e-10)
     # the poured particles are no lighter, so no later contact is shorter

@@ -116,6 +116,24 @@ def test_failed_deposit_is_retried_and_its_logs_kept(tmp_path):
         assert "ERROR" in log.read_text(), attempt
 
 
+def test_deposit_not_at_rest_fails_its_job(tmp_path):
+    """a deposit that runs out of chunks is not a result: its job fails, nothing reaches the
+    results folder, and the log says why"""
+    config = yaml.safe_load(open(TINY))
+    config["vars"] = {"maxchunks": 1, "chunk": 100}
+    config["retries"] = 0
+    short = tmp_path / "short.yaml"
+    short.write_text(yaml.safe_dump(config))
+    point = "eta1_zeta1_dr0_N100_coulomb"
+    target = tmp_path / "results" / "points" / point / "s1" / "packing.dat"
+    run(snakemake(tmp_path, str(target), config=short), str(tmp_path), 300, ok=False)
+    assert not target.exists()
+    log = tmp_path / "scratch" / "logs" / (point + "_s1.log.failed-attempt-1")
+    assert "NOT at rest" in log.read_text()
+    packing = tmp_path / "scratch" / "points" / (point + "_s1") / "packing.dat"
+    assert "at_rest 0" in packing.read_text()
+
+
 def test_table_mean_and_standard_error_over_seeds(tmp_path):
     """study_table.py against numbers computed here: three seeds of one point"""
     res = tmp_path / "results"
