@@ -10,9 +10,9 @@ claims.json into the results folder (and prints it as markdown):
   (eta = 1, vs zeta) lines at delta_r = 0, the position and height of the density maximum:
   a parabola through the highest point and its neighbours (five points where there are
   five), with its uncertainty from a parametric bootstrap: every point's mean is redrawn
-  from a normal distribution with the seed-to-seed standard deviation pooled over the points
-  with two seeds or more, divided by sqrt(its seeds) (no uncertainty while no point has two
-  seeds; fits whose vertex leaves the window are dropped and counted);
+  from a normal distribution with the seed-to-seed standard deviation pooled over all shapes
+  at delta_r = 0 with two seeds or more, divided by sqrt(its seeds) (no uncertainty while no
+  shape has two seeds; fits whose vertex leaves the window are dropped and counted);
 * `symmetry`: phi(eta, zeta) - phi(zeta, eta) over the map's pairs, its mean, and chi^2 per
   pair against the standard errors (about 1 when the map is symmetric within its errors);
 * `crossings`: the angle theta in (0, pi/2) at which a shape's P(Omega(theta)) of contact
@@ -60,8 +60,9 @@ def pooled_sd(samples):
     return math.sqrt(num / dof) if dof else None
 
 
-def line_maximum(points, rng):
-    """points: [(x, [phi per seed])] sorted by x. The maximum's position and height."""
+def line_maximum(points, sd, rng):
+    """points: [(x, [phi per seed])] sorted by x; sd: the seed-to-seed standard deviation of
+    one deposit (None: unknown). The maximum's position and height."""
     means = [float(np.mean(v)) for _, v in points]
     k = int(np.argmax(means))
     lo = max(0, min(k - 2, len(points) - 5))
@@ -73,7 +74,6 @@ def line_maximum(points, rng):
     if best is None:
         return {"at_edge": False, "x_highest": points[k][0], "phi_highest": means[k],
                 "fit": None}
-    sd = pooled_sd([v for _, v in points])
     means_w = np.array([float(np.mean(v)) for _, v in window])
     errors_w = np.array([sd / math.sqrt(len(v)) for _, v in window]) if sd is not None else None
     draws = []
@@ -129,12 +129,13 @@ def claims(results, law, n):
     for d in deposits:
         phi.setdefault((float(d["eta"]), float(d["zeta"])), []).append(float(d["phi"]))
 
+    sd = pooled_sd(list(phi.values()))    # over every shape at delta_r 0
     maxima = {}
     for name, (on_line, axis) in LINES.items():
         pts = sorted(((e if axis == "eta" else z), v) for (e, z), v in phi.items()
                      if on_line(e, z) or (e == z == 1.0))
         if len(pts) >= 3:
-            maxima[name] = line_maximum(pts, rng)
+            maxima[name] = line_maximum(pts, sd, rng)
 
     diffs, chi2 = [], []
     for (e, z), v in phi.items():
