@@ -507,6 +507,42 @@ def scaling_markdown(rows):
 
 
 # ----------------------------------------------------------------------------------------
+def bench_spheres(out, nsteps, repeats):
+    """The sphere path: 1024 unit spheres settled on a wall by LAMMPS's styles, then the same
+    steps through LAMMPS's pair granular + fix wall/gran + nve/sphere and through this
+    package's styles (with nve/ellipsoid, and with nve/asphere), alternating, 1 rank."""
+    scene = {"L": 10, "zt": 20}
+    run_lmp(out, "in.settle_sphere_wall", "log.settle_sphere_wall",
+            dict(scene, nfall=5000, out="spheres_wall.dump"))
+    codes = [("LAMMPS: granular, wall/gran, nve/sphere", "in.run_sphere_wall", {}),
+             ("ours: granular/ellipsoid, wall/gran/ellipsoid, nve/ellipsoid",
+              "in.run_sphere_wall_ours", {"integrator": "nve/ellipsoid"}),
+             ("ours with nve/asphere", "in.run_sphere_wall_ours", {"integrator": "nve/asphere"})]
+    loops = {name: [] for name, _, _ in codes}
+    for r in range(repeats):
+        for k, (name, inp, extra) in enumerate(codes):
+            log = run_lmp(out, inp, f"log.spheres_{k}_{r}",
+                          dict(scene, **extra, dump="spheres_wall.dump", nwarm=NWARM,
+                               nsteps=nsteps))
+            res = parse_log(log)
+            loops[name].append(res["loop"])
+            atoms = res["atoms"]
+        print(f"  repeat {r + 1}/{repeats} done", flush=True)
+    base = med(loops[codes[0][0]])
+    return [{"code": name, "atoms": atoms, "steps": nsteps, "loop_s": med(loops[name]),
+             "spread": (min(loops[name]), max(loops[name])), "repeats": repeats,
+             "ratio": med(loops[name]) / base} for name, _, _ in codes]
+
+
+def spheres_markdown(rows):
+    return fmt_table(["code", "spheres", "steps", "loop time (s, median)", "min-max",
+                      "time / LAMMPS"],
+                     [[r["code"], r["atoms"], r["steps"], f"{r['loop_s']:.3f}",
+                       f"{r['spread'][0]:.3f}-{r['spread'][1]:.3f}", f"{r['ratio']:.2f}"]
+                      for r in rows])
+
+
+# ----------------------------------------------------------------------------------------
 DEPOSIT_INPUT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 
 
@@ -567,7 +603,7 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--full", action="store_true", help="bigger N, M, repeats; N up to 1e5")
     ap.add_argument("--out", help="output folder (default runs/bench/quick or runs/bench/full)")
-    ap.add_argument("--only", choices=["peers", "knobs", "scaling", "deposit"],
+    ap.add_argument("--only", choices=["peers", "knobs", "scaling", "spheres", "deposit"],
                     action="append",
                     help="run only these parts (repeatable); deposit (the time to deposit "
                     "N = 4000 on 2 and 1 ranks, minutes) runs by default only with --full")
@@ -578,7 +614,8 @@ def main():
     if os.path.isdir(out):
         shutil.rmtree(out)
     os.makedirs(out)
-    parts = args.only or ["peers", "knobs", "scaling"] + (["deposit"] if args.full else [])
+    parts = args.only or ["peers", "knobs", "scaling", "spheres"] + \
+        (["deposit"] if args.full else [])
     if args.full:
         cfg = {"n": 1000, "peer_k": 2, "M": 1000, "rep": args.repeats or 5, "knob_M": 500,
                "ks": [1, 2, 4, 8, 10], "nps": [1, 2]}
@@ -659,6 +696,15 @@ def main():
         report["scaling"] = rows
         m = scaling_markdown(rows)
         md += [f"\n### 3. Scaling (granular/ellipsoid, median of {cfg['rep']})\n", m]
+        print(m, flush=True)
+    if "spheres" in parts:
+        print(f"[bench] 4. sphere path: 1024 spheres on a wall, M = {4 * cfg['M']}, "
+              f"{cfg['rep']} repeats", flush=True)
+        rows = bench_spheres(out, 4 * cfg["M"], cfg["rep"])
+        report["spheres"] = rows
+        m = spheres_markdown(rows)
+        md += [f"\n### 4. Sphere path (1024 unit spheres on a wall, 1 rank, "
+               f"M = {4 * cfg['M']}, median of {cfg['rep']})\n", m]
         print(m, flush=True)
     meta["seconds"] = time.time() - t0
     json.dump(report, open(os.path.join(out, "results.json"), "w"), indent=1, default=str)

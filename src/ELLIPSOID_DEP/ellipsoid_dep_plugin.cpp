@@ -11,6 +11,7 @@
 #include "compute_orient_histo.h"
 #include "compute_packing_ellipsoid.h"
 #include "compute_packing_profile.h"
+#include "fix_nve_ellipsoid.h"
 #include "fix_pour_ellipsoid.h"
 #include "fix_wall_gran_ellipsoid.h"
 #include "pair_granular_ellipsoid.h"
@@ -53,6 +54,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "fix", "wall/gran/ellipsoid",
                  "plane walls for general ellipsoids",
                  (void *) &create_with_args<FixWallGranEllipsoid, Fix>);
+  register_style(reg, lmp, handle, "fix", "nve/ellipsoid",
+                 "velocity Verlet for ellipsoids (nve/asphere) that does not rotate spheres",
+                 (void *) &create_with_args<FixNVEEllipsoid, Fix>);
   register_style(reg, lmp, handle, "compute", "packing/ellipsoid",
                  "volume fraction and coordination number of an ellipsoid deposit",
                  (void *) &create_with_args<ComputePackingEllipsoid, Compute>);

@@ -70,10 +70,9 @@ Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &s
   e.form = rotated_diagonal(rotation, semi_axes.cwiseInverse());
   e.inverse_form = rotated_diagonal(rotation, semi_axes);
   e.bounding_radius = bounding_radius_of(semi_axes);
-  const double lo = semi_axes.minCoeff();
-  e.sphere = (e.bounding_radius - lo) <= 1e-14 * e.bounding_radius;
-  e.finite = finite3(center) && finite3(semi_axes) && lo > 0.0 && e.form.allFinite() &&
-      e.inverse_form.allFinite();
+  e.sphere = is_sphere(semi_axes);
+  e.finite = finite3(center) && finite3(semi_axes) && semi_axes.minCoeff() > 0.0 &&
+      e.form.allFinite() && e.inverse_form.allFinite();
   return e;
 }
 

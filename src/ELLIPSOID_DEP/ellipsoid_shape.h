@@ -67,6 +67,15 @@ inline bool finite3(const Vec3 &v)
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+// Whether semi-axes describe a sphere: equal within 1e-14 relative. A sphere's contacts do not
+// depend on its orientation (the queries take closed-form paths; the integrator fix
+// nve/ellipsoid does not rotate it).
+inline bool is_sphere(const Vec3 &semi_axes)
+{
+  const double hi = semi_axes.maxCoeff();
+  return (hi - semi_axes.minCoeff()) <= 1e-14 * hi;
+}
+
 // make_ellipsoid decides validity once per body; a centre moved afterwards (periodic images)
 // is checked again because it is cheap
 inline bool valid(const Ellipsoid &e)

@@ -14,8 +14,6 @@
 using namespace LAMMPS_NS;
 using EllipsoidDep::Vec3;
 
-static constexpr double INERTIA = 0.2;    // solid ellipsoid: I_x = m (b^2 + c^2) / 5
-
 EllipsoidAtoms::EllipsoidAtoms(Atom *atom_in) :
     atom(atom_in), avec(dynamic_cast<AtomVecEllipsoid *>(atom_in->style_match("ellipsoid"))),
     super(atom_in->superellipsoid_flag != 0)
@@ -34,36 +32,6 @@ bool EllipsoidAtoms::has_shape(int i) const
   return atom->ellipsoid[i] >= 0;
 }
 
-const double *EllipsoidAtoms::shape(int i) const
-{
-  const int k = atom->ellipsoid[i];
-  return super ? avec->bonus_super[k].shape : avec->bonus[k].shape;
-}
-
-const double *EllipsoidAtoms::quat(int i) const
-{
-  return stored_quat(i);
-}
-
-double *EllipsoidAtoms::stored_quat(int i) const
-{
-  const int k = atom->ellipsoid[i];
-  return super ? avec->bonus_super[k].quat : avec->bonus[k].quat;
-}
-
-void EllipsoidAtoms::inertia(int i, double *moments) const
-{
-  if (super) {
-    std::memcpy(moments, avec->bonus_super[atom->ellipsoid[i]].inertia, 3 * sizeof(double));
-    return;
-  }
-  const double *s = shape(i);
-  const double m = atom->rmass[i];
-  moments[0] = INERTIA * m * (s[1] * s[1] + s[2] * s[2]);
-  moments[1] = INERTIA * m * (s[0] * s[0] + s[2] * s[2]);
-  moments[2] = INERTIA * m * (s[0] * s[0] + s[1] * s[1]);
-}
-
 EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotation) const
 {
   // as MathExtra::mq_to_omega, with the rotation the shape was built from
@@ -75,11 +43,25 @@ EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotati
   return rotation * body;
 }
 
+namespace {
+// a quaternion make_ellipsoid accepts: finite, of non-zero norm
+bool usable_quaternion(const double *q)
+{
+  const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  return q2 > 0.0 && std::isfinite(q2);
+}
+}    // namespace
+
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
 {
   const double *s = shape(i);
-  return EllipsoidDep::make_ellipsoid(Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]), quat(i),
-                                      Vec3(s[0], s[1], s[2]));
+  const Vec3 center(atom->x[i][0], atom->x[i][1], atom->x[i][2]), semi_axes(s[0], s[1], s[2]);
+  // a sphere's contacts do not depend on its orientation: in the identity frame its state
+  // holds while it spins (the angular velocity is then L / I), and fix nve/ellipsoid need not
+  // rotate it
+  if (EllipsoidDep::is_sphere(semi_axes) && usable_quaternion(quat(i)))
+    return EllipsoidDep::make_ellipsoid(center, EllipsoidDep::Mat3::Identity(), semi_axes);
+  return EllipsoidDep::make_ellipsoid(center, quat(i), semi_axes);
 }
 
 EllipsoidState EllipsoidAtoms::state(int i) const
@@ -92,16 +74,14 @@ EllipsoidState EllipsoidAtoms::state(int i) const
 namespace {
 // Whether a state s built from key holds for the bonus values (quaternion, semi-axes): they are
 // equal bit for bit, or s is a valid sphere (built in the identity frame) of the same semi-axes
-// and the quaternion is one make_ellipsoid accepts (finite, non-zero norm).
+// and the quaternion is usable.
 bool built_from(const EllipsoidState &s, const ShapeKey &key, const double *values)
 {
   if (!key.valid) return false;
   if (std::memcmp(values, key.values, 7 * sizeof(double)) == 0) return true;
   if (!s.shape.sphere || !s.shape.finite) return false;
   if (std::memcmp(values + 4, key.values + 4, 3 * sizeof(double)) != 0) return false;
-  const double q2 =
-      values[0] * values[0] + values[1] * values[1] + values[2] * values[2] + values[3] * values[3];
-  return q2 > 0.0 && std::isfinite(q2);
+  return usable_quaternion(values);
 }
 }    // namespace
 
@@ -117,12 +97,7 @@ void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
     s.shape.center = center;
     if (!EllipsoidDep::finite3(center)) s.shape.finite = key.valid = false;
   } else {
-    const Vec3 semi_axes(values[4], values[5], values[6]);
-    s.shape = EllipsoidDep::make_ellipsoid(center, values, semi_axes);
-    // a sphere's contacts do not depend on its orientation: in the identity frame its state
-    // holds while it spins (the angular velocity is then L / I)
-    if (s.shape.sphere && s.shape.finite)
-      s.shape = EllipsoidDep::make_ellipsoid(center, EllipsoidDep::Mat3::Identity(), semi_axes);
+    s.shape = ellipsoid(i);
     std::memcpy(key.values, values, sizeof(values));
     key.valid = EllipsoidDep::finite3(center);
   }

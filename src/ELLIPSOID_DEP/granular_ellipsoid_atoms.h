@@ -10,13 +10,15 @@
 #ifndef LMP_GRANULAR_ELLIPSOID_ATOMS_H
 #define LMP_GRANULAR_ELLIPSOID_ATOMS_H
 
+#include "atom.h"
+#include "atom_vec_ellipsoid.h"
+
 #include "ellipsoid_force_law.h"
 #include "ellipsoid_kernel.h"
 
+#include <cstring>
+
 namespace LAMMPS_NS {
-class Atom;
-class AtomVecEllipsoid;
-class LAMMPS;
 
 // What one atom brings to a contact.
 struct EllipsoidState {
@@ -49,9 +51,15 @@ class EllipsoidAtoms {
     const double *s = shape(i);
     return EllipsoidDep::bounding_radius_of(EllipsoidDep::Vec3(s[0], s[1], s[2]));
   }
+  bool sphere(int i) const    // semi-axes equal: orientation does not matter (EllipsoidDep)
+  {
+    const double *s = shape(i);
+    return EllipsoidDep::is_sphere(EllipsoidDep::Vec3(s[0], s[1], s[2]));
+  }
   void inertia(int i, double *moments) const;    // principal moments (body frame)
   // angular velocity (box frame) from the angular momentum, rotation: body -> box of atom i
   EllipsoidDep::Vec3 omega(int i, const EllipsoidDep::Mat3 &rotation) const;
+  // atom i's ellipsoid; a sphere in the identity frame, whatever its quaternion
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
   EllipsoidState state(int i) const;
   // state(i) into s, rebuilding the shape matrices only when key (that of the last build of
@@ -73,10 +81,43 @@ class EllipsoidAtoms {
   double *stored_quat(int i) const;    // the bonus entry behind quat(i)
 };
 
-// write access for a fix that creates ellipsoid atoms
+// the per-atom accessors are inline: the pair loop and the integrator call them per atom
+inline const double *EllipsoidAtoms::shape(int i) const
+{
+  const int k = atom->ellipsoid[i];
+  return super ? avec->bonus_super[k].shape : avec->bonus[k].shape;
+}
+
+inline double *EllipsoidAtoms::stored_quat(int i) const
+{
+  const int k = atom->ellipsoid[i];
+  return super ? avec->bonus_super[k].quat : avec->bonus[k].quat;
+}
+
+inline const double *EllipsoidAtoms::quat(int i) const
+{
+  return stored_quat(i);
+}
+
+inline void EllipsoidAtoms::inertia(int i, double *moments) const
+{
+  if (super) {
+    std::memcpy(moments, avec->bonus_super[atom->ellipsoid[i]].inertia, 3 * sizeof(double));
+    return;
+  }
+  constexpr double INERTIA = 0.2;    // solid ellipsoid: I_x = m (b^2 + c^2) / 5
+  const double *s = shape(i);
+  const double m = atom->rmass[i];
+  moments[0] = INERTIA * m * (s[1] * s[1] + s[2] * s[2]);
+  moments[1] = INERTIA * m * (s[0] * s[0] + s[2] * s[2]);
+  moments[2] = INERTIA * m * (s[0] * s[0] + s[1] * s[1]);
+}
+
+// write access for a fix that creates or rotates ellipsoid atoms
 class EllipsoidAtomsWriter : public EllipsoidAtoms {
  public:
   using EllipsoidAtoms::EllipsoidAtoms;
+  double *quat(int i) const { return stored_quat(i); }    // (w, x, y, z), to be updated
   // gives atom i (whose rmass is set: the superellipsoid style derives its inertia from it)
   // semi-axes along its body axes and its orientation (w, x, y, z), body -> box
   void set_ellipsoid(int i, const double *semi_axes, const double *quat);

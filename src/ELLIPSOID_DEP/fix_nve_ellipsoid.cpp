@@ -1,0 +1,76 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP: fix nve/ellipsoid (see the header)
+------------------------------------------------------------------------- */
+
+#include "fix_nve_ellipsoid.h"
+
+#include "atom.h"
+#include "error.h"
+#include "math_extra.h"
+
+#include "granular_ellipsoid_atoms.h"
+
+using namespace LAMMPS_NS;
+
+FixNVEEllipsoid::FixNVEEllipsoid(LAMMPS *lmp, int narg, char **arg) : FixNVE(lmp, narg, arg)
+{
+  if (narg > 3)
+    error->all(FLERR, "Illegal fix nve/ellipsoid command: unknown argument {}", arg[3]);
+}
+
+void FixNVEEllipsoid::init()
+{
+  if (!atom->style_match("ellipsoid"))
+    error->all(FLERR, "Fix nve/ellipsoid requires atom style ellipsoid");
+  EllipsoidAtoms::require_granular_style(lmp, "Fix nve/ellipsoid");
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) && atom->ellipsoid[i] < 0)
+      error->one(FLERR, "Fix nve/ellipsoid requires extended particles: atom {} has no shape",
+                 atom->tag[i]);
+  FixNVE::init();
+}
+
+void FixNVEEllipsoid::initial_integrate(int /*vflag*/)
+{
+  const EllipsoidAtomsWriter atoms(atom);
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  double **angmom = atom->angmom, **torque = atom->torque;
+  const double *rmass = atom->rmass;
+  const int nlocal = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
+  const double dtq = 0.5 * dtv;    // dt may have changed since init
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const double dtfm = dtf / rmass[i];
+    for (int d = 0; d < 3; d++) {
+      v[i][d] += dtfm * f[i][d];
+      x[i][d] += dtv * v[i][d];
+      angmom[i][d] += dtf * torque[i][d];
+    }
+    if (atoms.sphere(i)) continue;
+    // omega at the half step from the half-step angular momentum, then the quaternion a full
+    // step by LAMMPS's Richardson iteration
+    double inertia[3], omega[3];
+    atoms.inertia(i, inertia);
+    double *quat = atoms.quat(i);
+    MathExtra::mq_to_omega(angmom[i], quat, inertia, omega);
+    MathExtra::richardson(quat, angmom[i], omega, inertia, dtq);
+  }
+}
+
+void FixNVEEllipsoid::final_integrate()
+{
+  double **v = atom->v, **f = atom->f;
+  double **angmom = atom->angmom, **torque = atom->torque;
+  const double *rmass = atom->rmass;
+  const int nlocal = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const double dtfm = dtf / rmass[i];
+    for (int d = 0; d < 3; d++) {
+      v[i][d] += dtfm * f[i][d];
+      angmom[i][d] += dtf * torque[i][d];
+    }
+  }
+}
