@@ -61,6 +61,22 @@ def err(r, q):
     return 0.0 if math.isnan(e) else e
 
 
+def save(fig, out, fname):
+    fig.tight_layout()
+    p = os.path.join(out, fname)
+    fig.savefig(p, dpi=130)
+    plt.close(fig)
+    return p
+
+
+def diagonal_curve(ax, rows, label):
+    """phi with its error bars along eta = zeta of rows (one delta_r, one law)"""
+    line = sorted((r for r in rows if r["eta"] == r["zeta"]), key=lambda r: r["eta"])
+    if line:
+        ax.errorbar([r["eta"] for r in line], [r["phi_mean"] for r in line],
+                    yerr=[err(r, "phi") for r in line], fmt="o-", capsize=2, label=label)
+
+
 def shape_map(rows, dr, value, out, fname, label, title):
     sel = [r for r in rows if r["delta_r"] == dr]
     etas = sorted({r["eta"] for r in sel})
@@ -92,11 +108,7 @@ def shape_map(rows, dr, value, out, fname, label, title):
     ax.set_xlabel(r"$\eta = a/b$")
     ax.set_ylabel(r"$\zeta = b/c$")
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    p = os.path.join(out, fname)
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, fname)
 
 
 def density_lines(rows, out, dr0):
@@ -119,22 +131,12 @@ def density_lines(rows, out, dr0):
     if drawn:
         axs[0].legend(fontsize=8)
     for dr in sorted({r["delta_r"] for r in rows}):
-        line = sorted((r for r in rows if r["delta_r"] == dr and r["eta"] == r["zeta"]),
-                      key=lambda r: r["eta"])
-        if not line:
-            continue
-        axs[1].errorbar([r["eta"] for r in line], [r["phi_mean"] for r in line],
-                        yerr=[err(r, "phi") for r in line], fmt="o-", capsize=2,
-                        label=r"$\delta_r$ = %g" % dr)
+        diagonal_curve(axs[1], [r for r in rows if r["delta_r"] == dr], r"$\delta_r$ = %g" % dr)
     axs[1].set_xlabel(r"$\eta = \zeta$")
     axs[1].set_ylabel(r"$\phi$")
     axs[1].set_title("eta = zeta for each size polydispersity", fontsize=9)
     axs[1].legend(fontsize=8)
-    fig.tight_layout()
-    p = os.path.join(out, "fig_density_lines.png")
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, "fig_density_lines.png")
 
 
 def density_laws(rows, out):
@@ -147,21 +149,13 @@ def density_laws(rows, out):
     dr = min(r["delta_r"] for r in rows)
     fig, ax = plt.subplots(figsize=(5.2, 3.8))
     for law in laws:
-        line = sorted((r for r in rows if r["law"] == law and r["delta_r"] == dr
-                       and r["eta"] == r["zeta"]), key=lambda r: r["eta"])
-        if line:
-            ax.errorbar([r["eta"] for r in line], [r["phi_mean"] for r in line],
-                        yerr=[err(r, "phi") for r in line], fmt="o-", capsize=2, label=law)
+        diagonal_curve(ax, [r for r in rows if r["law"] == law and r["delta_r"] == dr], law)
     ax.set_xlabel(r"$\eta = \zeta$")
     ax.set_ylabel(r"volume fraction $\phi$")
     ax.set_title(r"eta = zeta for each tangential law, $\delta_r$ = %g, N %d"
                  % (dr, rows[0]["N"]), fontsize=9)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    p = os.path.join(out, fname)
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, fname)
 
 
 def read_mean_histo(path):
@@ -189,11 +183,7 @@ def histo_figure(table_dir, points, col, out, fname, title, xlabel, labeller, ma
     ax.set_ylabel(r"$P(\Omega(\theta))$")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    p = os.path.join(out, fname)
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, fname)
 
 
 def main(argv=None):
