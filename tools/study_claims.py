@@ -25,13 +25,14 @@ law (the study's); the first three keys are its deposits at delta_r = 0:
   zeta (the same fit and bootstrap), to compare zeta_max with eta;
 * `polydispersity`: `density`, for each delta_r > 0 of the default law: per shape present at
   that delta_r and at 0, phi(delta_r) - phi(0) with its standard error (a point's own seeds,
-  or the pooled seed SD of its selection when it has one seed), grouped by line (diagonal,
-  prolate, oblate, other), the mean difference over the shapes of each line and of all
-  (standard error from the shapes' standard errors), and the diagonal's fitted maximum at
-  that delta_r; `histograms`, for each shape present at several delta_r: its crossing angles
-  per delta_r, and per delta_r > 0 the rms over the bins of the difference between its
-  seed-mean histograms at delta_r and at 0, against the rms difference that the seed
-  scatter alone gives (the rms of the difference's standard error; null with one seed);
+  or the pooled seed SD of its selection when it has one seed), grouped by line (diagonal
+  with the spheres, prolate, oblate, other), the mean difference over the shapes of each
+  line and of all (standard error from the shapes' standard errors), and the diagonal's
+  fitted maximum at that delta_r; `histograms`, for each shape present at several
+  delta_r: its crossing angles per delta_r, and per delta_r > 0 the rms over the bins of the
+  difference between its seed-mean histograms at delta_r and at 0, against the rms
+  difference that the seed scatter alone gives (the rms of the difference's standard
+  error; null with one seed);
 * `laws`: for each other tangential law and each delta_r it was run at: its diagonal
   maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings.
 """
@@ -52,8 +53,8 @@ LINES = {"diagonal": (lambda e, z: e == z, "eta"),
          "prolate": (lambda e, z: z == 1.0 and e > 1.0, "eta"),
          "oblate": (lambda e, z: e == 1.0 and z > 1.0, "zeta")}
 OTHER = "other"    # the group of shapes on none of the lines
-HISTOGRAMS = {"contact_normals": ("contact_histo", False),    # name: (file, rising crossing)
-              "long_axes": ("orient_histo", True)}
+HISTOGRAMS = {"contact_normals": ("contact_histo", False, "contact"),    # name: (file, rising
+              "long_axes": ("orient_histo", True, "orient")}             # crossing, summary)
 BOOTSTRAP = 2000
 
 
@@ -159,7 +160,7 @@ def crossing(theta, p, rising):
 
 def mean_crossing(deposits, histogram):
     """{theta, sem, seeds} over the deposits (of one shape) whose curve crosses; None if none"""
-    name, rising = HISTOGRAMS[histogram]
+    name, rising, _ = HISTOGRAMS[histogram]
     v = [x for x in (crossing(*d[name], rising) for d in deposits) if x is not None]
     if not v:
         return None
@@ -170,7 +171,7 @@ def mean_crossing(deposits, histogram):
 def crossings(selection):
     """per histogram the crossing of each shape, and their summary over the aspherical ones"""
     out, summary = {}, {}
-    for histogram in HISTOGRAMS:
+    for histogram, (_, _, summary_key) in HISTOGRAMS.items():
         rows = []
         for (e, z), deposits in sorted(selection.shapes.items()):
             c = mean_crossing(deposits, histogram)
@@ -178,7 +179,7 @@ def crossings(selection):
                 rows.append(dict({"eta": e, "zeta": z}, **c))
         out[histogram] = rows
         v = [r["theta"] for r in rows if (r["eta"], r["zeta"]) != (1.0, 1.0)]
-        summary["contact" if histogram == "contact_normals" else "orient"] = {
+        summary[summary_key] = {
             "shapes": len(v), "mean": float(np.mean(v)) if v else None,
             "sd_over_shapes": float(np.std(v, ddof=1)) if len(v) > 1 else None}
     out["summary"] = summary
@@ -252,7 +253,7 @@ def seed_mean_histogram(deposits, name):
 
 def histogram_difference(deposits, reference, histogram):
     """rms over the bins of the seed-mean difference, and what the seed scatter gives"""
-    name, _ = HISTOGRAMS[histogram]
+    name = HISTOGRAMS[histogram][0]
     theta, p, sem = seed_mean_histogram(deposits, name)
     theta0, p0, sem0 = seed_mean_histogram(reference, name)
     if not np.allclose(theta, theta0):
@@ -291,7 +292,7 @@ def load_deposits(results, n):
     deposits = [d for d in read_csv(os.path.join(results, "deposits.csv")) if int(d["N"]) == n]
     for d in deposits:
         d["folder"] = os.path.join(results, "points", d["point"], "s%s" % d["seed"])
-        for name, _ in HISTOGRAMS.values():
+        for name, _, _ in HISTOGRAMS.values():
             d[name] = read_histo(os.path.join(d["folder"], name + ".dat"))[:2]
     return deposits
 
