@@ -6,8 +6,9 @@
 
 The table holds one row per point (eta, zeta, delta_r, N, tangential law) with the mean and
 standard error over seeds of every quantity and the files of its seed-mean histograms.
-The figures use one law and one N (default: those with the most points). Writes into DIR
-(default: the table's folder) PNG files:
+The figures use one law and one N (default: those with the most points), except
+fig_density_laws.png, which compares the laws at that N. Writes into DIR (default: the
+table's folder) PNG files:
   fig_density_map.png     phi over (eta, zeta), lowest delta_r                         (Fig. 4a)
   fig_density_lines.png   phi along eta = zeta, prolate (zeta = 1, vs eta) and oblate
                           (eta = 1, vs zeta); right panel: eta = zeta for each delta_r (Fig. 4b)
@@ -15,6 +16,8 @@ The figures use one law and one N (default: those with the most points). Writes 
   fig_contact_shapes.png  P(Omega(theta)) of contact normals for several shapes     (Fig. 6a)
   fig_contact_dr.png      the same for one shape and several delta_r                 (Fig. 6b)
   fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes       (Fig. 7)
+  fig_density_laws.png    phi along eta = zeta at the lowest delta_r, one curve per
+                          tangential law (only when the table holds more than one)
 Error bars are standard errors over seeds (none for a single seed). A figure whose data are
 missing (e.g. a single delta_r) is skipped with a note.
 """
@@ -58,6 +61,22 @@ def err(r, q):
     return 0.0 if math.isnan(e) else e
 
 
+def save(fig, out, fname):
+    fig.tight_layout()
+    p = os.path.join(out, fname)
+    fig.savefig(p, dpi=130)
+    plt.close(fig)
+    return p
+
+
+def diagonal_curve(ax, rows, label):
+    """phi with its error bars along eta = zeta of rows (one delta_r, one law)"""
+    line = sorted((r for r in rows if r["eta"] == r["zeta"]), key=lambda r: r["eta"])
+    if line:
+        ax.errorbar([r["eta"] for r in line], [r["phi_mean"] for r in line],
+                    yerr=[err(r, "phi") for r in line], fmt="o-", capsize=2, label=label)
+
+
 def shape_map(rows, dr, value, out, fname, label, title):
     sel = [r for r in rows if r["delta_r"] == dr]
     etas = sorted({r["eta"] for r in sel})
@@ -89,11 +108,7 @@ def shape_map(rows, dr, value, out, fname, label, title):
     ax.set_xlabel(r"$\eta = a/b$")
     ax.set_ylabel(r"$\zeta = b/c$")
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    p = os.path.join(out, fname)
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, fname)
 
 
 def density_lines(rows, out, dr0):
@@ -116,22 +131,31 @@ def density_lines(rows, out, dr0):
     if drawn:
         axs[0].legend(fontsize=8)
     for dr in sorted({r["delta_r"] for r in rows}):
-        line = sorted((r for r in rows if r["delta_r"] == dr and r["eta"] == r["zeta"]),
-                      key=lambda r: r["eta"])
-        if not line:
-            continue
-        axs[1].errorbar([r["eta"] for r in line], [r["phi_mean"] for r in line],
-                        yerr=[err(r, "phi") for r in line], fmt="o-", capsize=2,
-                        label=r"$\delta_r$ = %g" % dr)
+        diagonal_curve(axs[1], [r for r in rows if r["delta_r"] == dr], r"$\delta_r$ = %g" % dr)
     axs[1].set_xlabel(r"$\eta = \zeta$")
     axs[1].set_ylabel(r"$\phi$")
     axs[1].set_title("eta = zeta for each size polydispersity", fontsize=9)
     axs[1].legend(fontsize=8)
-    fig.tight_layout()
-    p = os.path.join(out, "fig_density_lines.png")
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, "fig_density_lines.png")
+
+
+def density_laws(rows, out):
+    """phi along eta = zeta at the lowest delta_r of rows (one N), one curve per law"""
+    fname = "fig_density_laws.png"
+    laws = sorted({r["law"] for r in rows})
+    if len(laws) < 2:
+        print("  %s: skipped (one tangential law)" % fname)
+        return None
+    dr = min(r["delta_r"] for r in rows)
+    fig, ax = plt.subplots(figsize=(5.2, 3.8))
+    for law in laws:
+        diagonal_curve(ax, [r for r in rows if r["law"] == law and r["delta_r"] == dr], law)
+    ax.set_xlabel(r"$\eta = \zeta$")
+    ax.set_ylabel(r"volume fraction $\phi$")
+    ax.set_title(r"eta = zeta for each tangential law, $\delta_r$ = %g, N %d"
+                 % (dr, rows[0]["N"]), fontsize=9)
+    ax.legend(fontsize=8)
+    return save(fig, out, fname)
 
 
 def read_mean_histo(path):
@@ -159,11 +183,7 @@ def histo_figure(table_dir, points, col, out, fname, title, xlabel, labeller, ma
     ax.set_ylabel(r"$P(\Omega(\theta))$")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    p = os.path.join(out, fname)
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    return save(fig, out, fname)
 
 
 def main(argv=None):
@@ -179,7 +199,8 @@ def main(argv=None):
         sys.exit("plot_figures: %s has no rows" % args.table)
     law = args.law or most_common(rows, "law")
     n = args.N or most_common([r for r in rows if r["law"] == law], "N")
-    rows = [r for r in rows if r["law"] == law and r["N"] == n]
+    all_laws = [r for r in rows if r["N"] == n]
+    rows = [r for r in all_laws if r["law"] == law]
     if not rows:
         sys.exit("plot_figures: no point with law %s and N %d in %s" % (law, n, args.table))
     table_dir = os.path.dirname(os.path.abspath(args.table))
@@ -218,6 +239,7 @@ def main(argv=None):
     written.append(histo_figure(table_dir, shapes, "orient_histo", out, "fig_orient_shapes.png",
                                 r"long axis $a$, $\delta_r$ = %g, %s" % (dr0, tag),
                                 r"$\theta$ (long axis vs +z)", shape_label))
+    written.append(density_laws(all_laws, out))
     written = [w for w in written if w]
     print("plot_figures: wrote\n  " + "\n  ".join(written))
     return written

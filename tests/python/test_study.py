@@ -47,6 +47,7 @@ def test_tiny_study_through_snakemake(tmp_path):
     assert len(deposits) == 2 and {d["seed"] for d in deposits} == {"1"}
     for name in ("fig_density_lines.png", "fig_contact_shapes.png", "fig_orient_shapes.png"):
         assert_image(str(res / "figures" / name))
+    assert not (res / "figures" / "fig_density_laws.png").exists()    # one tangential law
     assert_image(str(res / "picture.png"))
     # the porous-media view of both deposits (sphere and prolate: on the lines) and its figure
     assert_image(str(res / "pores.png"))
@@ -171,6 +172,26 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
                             + packings, capture_output=True, text=True, timeout=60)
     assert failed.returncode != 0
     assert "not at rest" in failed.stderr and str(moving.parent) in failed.stderr
+
+
+def test_figures_compare_tangential_laws(tmp_path):
+    """a table with two laws on the diagonal: plot_figures.py draws them against each other"""
+    columns = ["point", "eta", "zeta", "delta_r", "N", "law", "seeds"] + [
+        q + s for q in ("phi", "Z", "Z_no_rattlers") for s in ("_mean", "_sem")] + [
+        "contact_histo", "orient_histo"]
+    (tmp_path / "histo.dat").write_text("".join("%g 0.08 0.001\n" % (0.1 + 0.2 * k)
+                                                for k in range(16)))
+    rows = [[law + str(v), v, v, dr, 3000, law, 2, 0.6 + 0.01 * v, 0.001, 6.0, 0.05, 6.0, 0.05,
+             "histo.dat", "histo.dat"]
+            for law in ("coulomb", "viscous") for v in (1.0, 1.4, 2.0) for dr in (0.0, 0.3)]
+    with open(tmp_path / "table.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        w.writerows(rows)
+    out = run([PY, os.path.join(TOOLS, "plot_figures.py"), str(tmp_path / "table.csv")],
+              str(tmp_path), 120)
+    assert_image(str(tmp_path / "fig_density_laws.png"))
+    assert "fig_density_laws.png" in out
 
 
 def test_paper_study_definition(tmp_path):
