@@ -554,8 +554,8 @@ def run_deposit(out, n, np, seed):
     cmd = [lmp_path(), "-in", DEPOSIT_INPUT, "-log", "log.lammps", "-screen", "none", "-nocite",
            "-var", "N", str(n), "-var", "seed", str(seed), "-var", "out", work,
            "-var", "image", "0", "-var", "tangential", "history 2.0e3 0.5"]    # the runner's
-    if np > 1:
-        cmd = ["mpirun", "-np", str(np), "--oversubscribe", "--bind-to", "none"] + cmd
+    if np > 1:    # as `./ellipsoid-dep run` launches it (Open MPI binds 2 ranks to cores)
+        cmd = ["mpirun", "-np", str(np)] + cmd
     t0 = time.time()
     subprocess.run(cmd, cwd=work, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
     wall = time.time() - t0
