@@ -554,7 +554,9 @@ def run_deposit(out, n, np, seed):
     cmd = [lmp_path(), "-in", DEPOSIT_INPUT, "-log", "log.lammps", "-screen", "none", "-nocite",
            "-var", "N", str(n), "-var", "seed", str(seed), "-var", "out", work,
            "-var", "image", "0", "-var", "tangential", "history 2.0e3 0.5"]    # the runner's
-    if np > 1:    # as `./ellipsoid-dep run` launches it (Open MPI binds 2 ranks to cores)
+    # as `./ellipsoid-dep run` launches it (Open MPI binds 2 ranks to cores); the other rows run
+    # unbound and oversubscribed (run_lmp), as their earlier tables did
+    if np > 1:
         cmd = ["mpirun", "-np", str(np)] + cmd
     t0 = time.time()
     subprocess.run(cmd, cwd=work, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)

@@ -16,7 +16,8 @@ law (the study's); the first three keys are its deposits at delta_r = 0:
   selection with two seeds or more, divided by sqrt(its seeds) (no uncertainty while no shape
   has two seeds; fits whose vertex leaves the window are dropped and counted);
 * `symmetry`: phi(eta, zeta) - phi(zeta, eta) over the map's pairs, its mean, and chi^2 per
-  pair against the standard errors (about 1 when the map is symmetric within its errors);
+  pair against the standard errors from the pooled seed SD (about 1 when the map is
+  symmetric within the seed scatter);
 * `crossings`: the angle theta in (0, pi/2) at which a shape's P(Omega(theta)) of contact
   normals (and of long axes) crosses the isotropic value 1/(4 pi), per shape, with the
   standard error over its seeds; the paper reports contact-normal curves crossing "slightly
@@ -24,8 +25,8 @@ law (the study's); the first three keys are its deposits at delta_r = 0:
 * `constant_eta`: for each eta with three values of zeta or more, the maximum of phi over
   zeta (the same fit and bootstrap), to compare zeta_max with eta;
 * `polydispersity`: `density`, for each delta_r > 0 of the default law: per shape present at
-  that delta_r and at 0, phi(delta_r) - phi(0) with its standard error (a point's own seeds,
-  or the pooled seed SD of its selection when it has one seed), grouped by line (diagonal
+  that delta_r and at 0, phi(delta_r) - phi(0) with its standard error (each side's pooled
+  seed SD of its selection / sqrt(its seeds)), grouped by line (diagonal
   with the spheres, prolate, oblate, other), the mean difference over the shapes of each
   line and of all (standard error from the shapes' standard errors), and the diagonal's
   fitted maximum at that delta_r; `histograms`, for each shape present at several
@@ -140,11 +141,10 @@ class Selection:
         return line_maximum(points, self.sd, rng) if len(points) >= 3 else None
 
     def standard_error(self, shape):
-        """of the shape's mean phi: from its seeds, from the pooled SD with one seed"""
-        v = self.phi[shape]
-        if len(v) > 1:
-            return float(np.std(v, ddof=1) / math.sqrt(len(v)))
-        return self.sd
+        """of the shape's mean phi: the pooled seed SD / sqrt(its seeds). With 2-3 seeds a
+        point's own SD has 1-2 degrees of freedom: ratios to it scatter far more than
+        chi^2 does; the bootstrap uses the same model. None while no shape has two seeds."""
+        return self.sd / math.sqrt(len(self.phi[shape])) if self.sd is not None else None
 
 
 def crossing(theta, p, rising):
@@ -193,8 +193,9 @@ def symmetry(selection):
         if e < z and (z, e) in phi:
             w = phi[(z, e)]
             diffs.append(float(np.mean(v) - np.mean(w)))
-            if len(v) > 1 and len(w) > 1:
-                var = np.var(v, ddof=1) / len(v) + np.var(w, ddof=1) / len(w)
+            if selection.sd:
+                se_v, se_w = selection.standard_error((e, z)), selection.standard_error((z, e))
+                var = se_v ** 2 + se_w ** 2
                 chi2.append(diffs[-1] ** 2 / var)
     return {"pairs": len(diffs),
             "mean_difference": float(np.mean(diffs)) if diffs else None,

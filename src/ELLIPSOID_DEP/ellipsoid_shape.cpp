@@ -15,10 +15,9 @@ namespace {
   inline Mat3 rotation_of(const double quat[4])
   {
     Eigen::Quaterniond q(quat[0], quat[1], quat[2], quat[3]);
-    const double nq = q.norm();
     Mat3 r = Mat3::Identity();
-    if (nq > 0.0 && std::isfinite(nq)) {
-      q.coeffs() /= nq;
+    if (usable_quaternion(quat)) {
+      q.coeffs() /= q.norm();
       r = q.toRotationMatrix();
     } else {
       r.setConstant(std::numeric_limits<double>::quiet_NaN());    // flagged Degenerate later

@@ -56,15 +56,11 @@ Mat3 quaternion_rotation(const double quat[4]);
 Ellipsoid make_ellipsoid(const Vec3 &center, const double quat[4], const Vec3 &semi_axes);
 Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &semi_axes);
 
-// Radius of the bounding sphere about the centre: the largest semi-axis.
-inline double bounding_radius_of(const Vec3 &semi_axes)
+// A quaternion make_ellipsoid can use: finite, of non-zero norm.
+inline bool usable_quaternion(const double quat[4])
 {
-  return semi_axes.maxCoeff();
-}
-
-inline bool finite3(const Vec3 &v)
-{
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+  const double q2 = quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3];
+  return q2 > 0.0 && std::isfinite(q2);
 }
 
 // Whether semi-axes describe a sphere: equal within 1e-14 relative. A sphere's contacts do not
@@ -74,6 +70,28 @@ inline bool is_sphere(const Vec3 &semi_axes)
 {
   const double hi = semi_axes.maxCoeff();
   return (hi - semi_axes.minCoeff()) <= 1e-14 * hi;
+}
+
+// A particle's ellipsoid: make_ellipsoid, except that a sphere with a usable quaternion is built
+// in the identity frame. Its contacts do not depend on its orientation, so the state holds
+// while it spins and an integrator need not rotate it; every engine-side caller builds
+// particles through this one rule.
+inline Ellipsoid make_particle(const Vec3 &center, const double quat[4], const Vec3 &semi_axes)
+{
+  if (is_sphere(semi_axes) && usable_quaternion(quat))
+    return make_ellipsoid(center, Mat3::Identity(), semi_axes);
+  return make_ellipsoid(center, quat, semi_axes);
+}
+
+// Radius of the bounding sphere about the centre: the largest semi-axis.
+inline double bounding_radius_of(const Vec3 &semi_axes)
+{
+  return semi_axes.maxCoeff();
+}
+
+inline bool finite3(const Vec3 &v)
+{
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
 // make_ellipsoid decides validity once per body; a centre moved afterwards (periodic images)

@@ -14,8 +14,7 @@ using namespace LAMMPS_NS;
 
 FixNVEEllipsoid::FixNVEEllipsoid(LAMMPS *lmp, int narg, char **arg) : FixNVE(lmp, narg, arg)
 {
-  if (narg > 3)
-    error->all(FLERR, "Illegal fix nve/ellipsoid command: unknown argument {}", arg[3]);
+  if (narg > 3) error->all(FLERR, 3, "Unknown fix nve/ellipsoid argument: {}", arg[3]);
 }
 
 void FixNVEEllipsoid::init()
@@ -32,7 +31,7 @@ void FixNVEEllipsoid::init()
 
 void FixNVEEllipsoid::initial_integrate(int /*vflag*/)
 {
-  const EllipsoidAtomsWriter atoms(atom);
+  EllipsoidAtomsWriter atoms(atom);
   double **x = atom->x, **v = atom->v, **f = atom->f;
   double **angmom = atom->angmom, **torque = atom->torque;
   const double *rmass = atom->rmass;
@@ -47,7 +46,13 @@ void FixNVEEllipsoid::initial_integrate(int /*vflag*/)
       x[i][d] += dtv * v[i][d];
       angmom[i][d] += dtf * torque[i][d];
     }
-    if (atoms.sphere(i)) continue;
+    // atoms join the group mid-run (fix pour, dynamic groups): each needs a shape
+    if (!atoms.has_shape(i))
+      error->one(FLERR, "Fix nve/ellipsoid requires extended particles: atom {} has no shape",
+                 atom->tag[i]);
+    // a sphere's orientation is not read by this package's styles; a blocky superellipsoid's
+    // is read by others
+    if (atoms.sphere(i) && !atoms.blocky(i)) continue;
     // omega at the half step from the half-step angular momentum, then the quaternion a full
     // step by LAMMPS's Richardson iteration
     double inertia[3], omega[3];

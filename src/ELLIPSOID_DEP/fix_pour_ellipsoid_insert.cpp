@@ -143,8 +143,8 @@ std::vector<Ellipsoid> FixPourEllipsoid::gather_near_region(int reserve)
   std::vector<Ellipsoid> near;
   near.reserve(total / NEAR_SIZE + reserve);
   for (int k = 0; k < total; k += NEAR_SIZE)
-    near.push_back(make_ellipsoid(Vec3(all[k], all[k + 1], all[k + 2]), &all[k + 6],
-                                  Vec3(all[k + 3], all[k + 4], all[k + 5])));
+    near.push_back(make_particle(Vec3(all[k], all[k + 1], all[k + 2]), &all[k + 6],
+                                 Vec3(all[k + 3], all[k + 4], all[k + 5])));
   return near;
 }
 
@@ -209,7 +209,7 @@ void FixPourEllipsoid::pre_exchange()
       for (int attempt = 0; attempt < maxattempt; attempt++) {
         xyz_random(h, coord);
         sampler->orientation(quat);
-        cand = make_ellipsoid(Vec3(coord[0], coord[1], coord[2]), quat, axes);
+        cand = make_particle(Vec3(coord[0], coord[1], coord[2]), quat, axes);
         if (!overlaps(cand, near)) {
           success = true;
           break;

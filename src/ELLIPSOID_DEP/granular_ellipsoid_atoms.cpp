@@ -4,12 +4,9 @@
 
 #include "granular_ellipsoid_atoms.h"
 
-#include "atom.h"
-#include "atom_vec_ellipsoid.h"
 #include "error.h"
 
 #include <cmath>
-#include <cstring>
 
 using namespace LAMMPS_NS;
 using EllipsoidDep::Vec3;
@@ -43,25 +40,11 @@ EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotati
   return rotation * body;
 }
 
-namespace {
-// a quaternion make_ellipsoid accepts: finite, of non-zero norm
-bool usable_quaternion(const double *q)
-{
-  const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  return q2 > 0.0 && std::isfinite(q2);
-}
-}    // namespace
-
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const
 {
   const double *s = shape(i);
-  const Vec3 center(atom->x[i][0], atom->x[i][1], atom->x[i][2]), semi_axes(s[0], s[1], s[2]);
-  // a sphere's contacts do not depend on its orientation: in the identity frame its state
-  // holds while it spins (the angular velocity is then L / I), and fix nve/ellipsoid need not
-  // rotate it
-  if (EllipsoidDep::is_sphere(semi_axes) && usable_quaternion(quat(i)))
-    return EllipsoidDep::make_ellipsoid(center, EllipsoidDep::Mat3::Identity(), semi_axes);
-  return EllipsoidDep::make_ellipsoid(center, quat(i), semi_axes);
+  return EllipsoidDep::make_particle(Vec3(atom->x[i][0], atom->x[i][1], atom->x[i][2]), quat(i),
+                                     Vec3(s[0], s[1], s[2]));
 }
 
 EllipsoidState EllipsoidAtoms::state(int i) const
@@ -81,7 +64,7 @@ bool built_from(const EllipsoidState &s, const ShapeKey &key, const double *valu
   if (std::memcmp(values, key.values, 7 * sizeof(double)) == 0) return true;
   if (!s.shape.sphere || !s.shape.finite) return false;
   if (std::memcmp(values + 4, key.values + 4, 3 * sizeof(double)) != 0) return false;
-  return usable_quaternion(values);
+  return EllipsoidDep::usable_quaternion(values);
 }
 }    // namespace
 

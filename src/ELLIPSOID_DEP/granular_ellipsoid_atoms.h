@@ -51,15 +51,21 @@ class EllipsoidAtoms {
     const double *s = shape(i);
     return EllipsoidDep::bounding_radius_of(EllipsoidDep::Vec3(s[0], s[1], s[2]));
   }
-  bool sphere(int i) const    // semi-axes equal: orientation does not matter (EllipsoidDep)
+  bool sphere(int i) const    // semi-axes equal (EllipsoidDep::is_sphere)
   {
     const double *s = shape(i);
     return EllipsoidDep::is_sphere(EllipsoidDep::Vec3(s[0], s[1], s[2]));
   }
+  // a superellipsoid with block exponents above 2 (ignored by this package's contacts, read by
+  // other styles)
+  bool blocky(int i) const
+  {
+    return super && avec->bonus_super[atom->ellipsoid[i]].type != AtomVecEllipsoid::ELLIPSOID;
+  }
   void inertia(int i, double *moments) const;    // principal moments (body frame)
   // angular velocity (box frame) from the angular momentum, rotation: body -> box of atom i
   EllipsoidDep::Vec3 omega(int i, const EllipsoidDep::Mat3 &rotation) const;
-  // atom i's ellipsoid; a sphere in the identity frame, whatever its quaternion
+  // atom i's ellipsoid by EllipsoidDep::make_particle (a sphere in the identity frame)
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
   EllipsoidState state(int i) const;
   // state(i) into s, rebuilding the shape matrices only when key (that of the last build of
@@ -117,7 +123,7 @@ inline void EllipsoidAtoms::inertia(int i, double *moments) const
 class EllipsoidAtomsWriter : public EllipsoidAtoms {
  public:
   using EllipsoidAtoms::EllipsoidAtoms;
-  double *quat(int i) const { return stored_quat(i); }    // (w, x, y, z), to be updated
+  double *quat(int i) { return stored_quat(i); }    // (w, x, y, z), to be updated
   // gives atom i (whose rmass is set: the superellipsoid style derives its inertia from it)
   // semi-axes along its body axes and its orientation (w, x, y, z), body -> box
   void set_ellipsoid(int i, const double *semi_axes, const double *quat);

@@ -28,7 +28,7 @@ set type 1 quat/random {seed}
 velocity all create 0.5 {seed + 1} loop geom
 pair_style granular/ellipsoid
 pair_coeff * * hertz 2.0e4 20.0 tangential {tangential}
-fix integrate all nve/asphere
+fix integrate all nve/ellipsoid
 fix fall all gravity 1.0 vector 0 0 -1
 timestep 2e-4
 thermo_style custom step ke

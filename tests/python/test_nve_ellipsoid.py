@@ -101,7 +101,8 @@ def test_same_trajectory_as_nve_asphere_and_spheres_keep_their_orientation(atom_
      "Fix nve/ellipsoid requires atom style ellipsoid"),
     ("atom_style ellipsoid", "fix i all nve/ellipsoid\nrun 0",
      "Fix nve/ellipsoid requires extended particles: atom 2 has no shape"),
-    ("atom_style ellipsoid", "fix i all nve/ellipsoid spin", "unknown argument spin"),
+    ("atom_style ellipsoid", "fix i all nve/ellipsoid spin",
+     "Unknown fix nve/ellipsoid argument: spin"),
 ])
 def test_bad_input_is_a_lammps_error(setup, command, message):
     lmp = new_lammps()
@@ -117,6 +118,84 @@ create_atoms 1 single 2 1 1
 {"set atom 1 shape 1 1 1" if setup.endswith("ellipsoid") else ""}
 set type 1 mass 1.0
 {command}
+""")
+    finally:
+        lmp.close()
+
+
+def spun_quaternions(atom_style, shapes, block=None, steps=200):
+    """Free atoms of the given shapes (diameters) spinning about a tilted axis under
+    nve/ellipsoid: their quaternions before and after"""
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(f"""
+units lj
+atom_style {atom_style}
+atom_modify map array
+region box block 0 {4 * len(shapes)} 0 4 0 4
+create_box 1 box
+""")
+        for k, shape in enumerate(shapes, start=1):
+            lmp.command(f"create_atoms 1 single {4 * k - 2} 2 2")
+            lmp.command("set atom {} shape {:.17g} {:.17g} {:.17g}".format(k, *shape))
+        lmp.commands_string(f"""
+set type 1 mass 1.0
+{"set type 1 block %g %g" % block if block else ""}
+set type 1 quat 1 2 3 40
+set type 1 angmom 0.3 -0.2 0.5
+fix i all nve/ellipsoid
+timestep 1e-3
+""")
+        before = state(lmp)["quat"]
+        lmp.command(f"run {steps}")
+        return before, state(lmp)["quat"]
+    finally:
+        lmp.close()
+
+
+def test_sphere_means_equal_semi_axes_to_1e_14():
+    """The kernel's sphere test decides: 1e-15 apart is a sphere (not rotated), 1e-13 apart an
+    ellipsoid (rotated); an ellipsoid spins off its start"""
+    before, after = spun_quaternions("ellipsoid", [(1, 1, 1 + 1e-15), (1, 1, 1 + 1e-13),
+                                                   (1.4, 1.0, 0.7)])
+    assert np.array_equal(after[0], before[0])
+    assert not np.allclose(after[1], before[1])
+    assert not np.allclose(after[2], before[2])
+
+
+def test_blocky_superellipsoid_of_equal_semi_axes_is_rotated():
+    """Other styles read a blocky superellipsoid's orientation, so only the smooth one (block
+    2 2, the ellipsoid) counts as a sphere"""
+    before, after = spun_quaternions("ellipsoid superellipsoid", [(1, 1, 1)], block=(3, 3))
+    assert not np.allclose(after[0], before[0])
+    before, after = spun_quaternions("ellipsoid superellipsoid", [(1, 1, 1)], block=(2, 2))
+    assert np.array_equal(after[0], before[0])
+
+
+def test_shapeless_atom_joining_the_group_mid_run_is_an_error():
+    """A point particle (no shape) that enters a dynamic group during the run is refused
+    instead of reading the bonus data of no atom"""
+    lmp = new_lammps()
+    try:
+        with pytest.raises(Exception, match=re.escape(
+                "Fix nve/ellipsoid requires extended particles: atom 2 has no shape")):
+            lmp.commands_string("""
+units lj
+atom_style ellipsoid
+region box block 0 10 0 4 0 4
+create_box 1 box
+create_atoms 1 single 7 2 2
+create_atoms 1 single 2 2 2
+set atom 1 shape 1 1 1
+set type 1 mass 1.0
+velocity all set 1 0 0
+region right block 5 10 0 4 0 4
+group points id 2
+group moving dynamic all region right every 1
+fix p points nve
+fix i moving nve/ellipsoid
+timestep 1e-2
+run 500
 """)
     finally:
         lmp.close()

@@ -136,8 +136,9 @@ def test_claims_of_a_synthetic_study(study):
     assert set(c["maxima"]) == {"diagonal"}    # prolate and oblate: two points each
     s = c["symmetry"]
     assert s["pairs"] == 2 and s["pairs_with_errors"] == 2
-    # seeds +-0.001: SE of a point 0.001, of a difference 0.001 sqrt(2); one pair equal, the
-    # other 0.01 apart: chi2 = (0 + 0.01^2 / 2e-6) / 2
+    # seeds +-0.001 everywhere: pooled SD 0.001 sqrt(2), SE of a two-seed point 0.001, of a
+    # difference 0.001 sqrt(2); one pair equal, the other 0.01 apart: chi2 = (0 + 0.01^2 /
+    # 2e-6) / 2
     assert s["chi2_per_pair"] == pytest.approx(25.0, rel=1e-6)
     assert s["mean_difference"] == pytest.approx(-0.005, abs=1e-12)
     for key in ("contact_normals", "long_axes"):
@@ -191,9 +192,9 @@ def test_polydisperse_density(study):
         for r in rows:
             assert r["difference"] == pytest.approx(SHIFT_03[line], abs=1e-12), r
             shape = (r["eta"], r["zeta"])
-            # a point's SE: 0.002 (oblate 0.004) at delta_r 0.3 and 0.001 at 0 from its two
-            # seeds; with one seed, the pooled SD of its own delta_r
-            se_03 = {"other": POOLED_03, "oblate": 0.004}.get(line, 0.002)
+            # a point's SE: the pooled SD of its own delta_r / sqrt(its seeds), whatever its
+            # own scatter (the oblate shape's is twice the others')
+            se_03 = POOLED_03 / (1 if line == "other" else math.sqrt(2))
             se_0 = 0.001 * math.sqrt(2) if shape == (1.6, 1.6) else 0.001
             assert r["sem"] == pytest.approx(math.hypot(se_03, se_0), rel=1e-6), r
             assert r["seeds"] == [1 if line == "other" else 2, 1 if shape == (1.6, 1.6) else 2]
