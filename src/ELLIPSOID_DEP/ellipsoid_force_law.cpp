@@ -30,14 +30,40 @@ double ForceLaw::hertz_stiffness(double effective_radius) const
   return 4.0 / 3.0 * reduced_modulus(normal) * std::sqrt(effective_radius);
 }
 
+double hertz_max_overlap(double stiffness, double effective_mass, double impact_speed)
+{
+  // m* xi'' = -k xi^3/2 from xi' = v: the kinetic energy m* v^2 / 2 stored as 2/5 k xi^5/2
+  return std::pow(5.0 * effective_mass * impact_speed * impact_speed / (4.0 * stiffness), 0.4);
+}
+
 double hertz_contact_time(double stiffness, double effective_mass, double impact_speed)
 {
-  // m* xi'' = -k xi^3/2 from xi' = v: xi_max = (5 m* v^2 / (4 k))^(2/5), and the time in
-  // contact is 2 xi_max / v times the integral of (1 - u^5/2)^(-1/2) over [0, 1]
+  // the time in contact is 2 xi_max / v times the integral of (1 - u^5/2)^(-1/2) over [0, 1]
   const double integral = 0.4 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9);
+  return 2.0 * integral * hertz_max_overlap(stiffness, effective_mass, impact_speed) /
+      impact_speed;
+}
+
+double ForceLaw::damping_coefficient(double effective_radius, double sqrt_overlap,
+                                     double effective_mass) const
+{
+  if (normal.kind == NormalModel::Kind::Hertz) return normal.damping * sqrt_overlap;
+  // damping of the restitution coefficient e: gamma = -2 sqrt(5/6) beta sqrt(S_n m*),
+  // S_n = 2 E* sqrt(R* xi) (LAMMPS's damping coeff_restitution for Hertz)
+  const double log_e = std::log(normal.restitution);
+  const double beta = log_e / std::sqrt(log_e * log_e + PI * PI);
+  const double stiffness_n = 2.0 * reduced_modulus(normal) * std::sqrt(effective_radius) * sqrt_overlap;
+  return -2.0 * SQRT_5_6 * beta * std::sqrt(stiffness_n * effective_mass);
+}
+
+double damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
+                    double impact_speed)
+{
   const double max_overlap =
-      std::pow(5.0 * effective_mass * impact_speed * impact_speed / (4.0 * stiffness), 0.4);
-  return 2.0 * integral * max_overlap / impact_speed;
+      hertz_max_overlap(law.hertz_stiffness(effective_radius), effective_mass, impact_speed);
+  const double gamma =
+      law.damping_coefficient(effective_radius, std::sqrt(max_overlap), effective_mass);
+  return gamma > 0.0 ? effective_mass / gamma : HUGE_VAL;
 }
 
 ContactForce ForceLaw::compute(const ContactGeometry &geometry, const ContactMotion &motion,
@@ -54,19 +80,9 @@ ContactForce ForceLaw::compute(const ContactGeometry &geometry, const ContactMot
   const double overlap_rate = v_rel.dot(n);    // d(xi)/dt > 0 while approaching
   const Vec3 v_tangent = v_rel - overlap_rate * n;
 
-  double fn = hertz_stiffness(geometry.effective_radius) * overlap * sqrt_overlap;
-  if (normal.kind == NormalModel::Kind::Hertz) {
-    fn += normal.damping * sqrt_overlap * overlap_rate;
-  } else {
-    // damping of the restitution coefficient e: gamma = -2 sqrt(5/6) beta sqrt(S_n m*),
-    // S_n = 2 E* sqrt(R* xi) (LAMMPS's damping coeff_restitution for Hertz)
-    const double log_e = std::log(normal.restitution);
-    const double beta = log_e / std::sqrt(log_e * log_e + PI * PI);
-    const double stiffness_n =
-        2.0 * reduced_modulus(normal) * std::sqrt(geometry.effective_radius) * sqrt_overlap;
-    const double gamma = -2.0 * SQRT_5_6 * beta * std::sqrt(stiffness_n * motion.effective_mass);
-    fn += gamma * overlap_rate;
-  }
+  double fn = hertz_stiffness(geometry.effective_radius) * overlap * sqrt_overlap +
+      damping_coefficient(geometry.effective_radius, sqrt_overlap, motion.effective_mass) *
+          overlap_rate;
   // limit_damping: on fast separation the damping may exceed the elastic force; clip
   if (normal.limit_damping && fn < 0.0) fn = 0.0;
   out.normal_force = fn;

@@ -76,11 +76,25 @@ struct ForceLaw {
 
   // k of the elastic normal force k xi^3/2 at effective radius R*
   double hertz_stiffness(double effective_radius) const;
+  // gamma of the normal damping force gamma dxi/dt at overlap xi (given as sqrt(xi), which
+  // compute has at hand), effective radius R* and effective mass m*
+  double damping_coefficient(double effective_radius, double sqrt_overlap,
+                             double effective_mass) const;
 };
+
+// Deepest overlap of an undamped Hertz impact, F = stiffness xi^3/2, at relative normal
+// speed impact_speed: (5 m* v^2 / (4 k))^(2/5).
+double hertz_max_overlap(double stiffness, double effective_mass, double impact_speed);
 
 // Duration of an undamped Hertz impact, F = stiffness xi^3/2, at relative normal speed
 // impact_speed: 2 (2/5) B(2/5, 1/2) (5 m*/(4 k))^(2/5) v^(-1/5) ~ 3.218 (m*^2/(k^2 v))^(1/5).
 double hertz_contact_time(double stiffness, double effective_mass, double impact_speed);
+
+// m* / gamma at the deepest overlap of that impact (HUGE_VAL without damping). Velocity Verlet
+// integrates a damper stably only for dt / (m*/gamma) < 2: dt over this time is the damping
+// number a run must keep small.
+double damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
+                    double impact_speed);
 
 // A named material of the materials file, in the units of the simulation.
 struct Material {

@@ -36,7 +36,7 @@ using namespace EllipsoidDep;
 
 FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true),
-    impact_velocity(0.0), contact_time_reported(0.0), force_flag(0)
+    impact_velocity(0.0), force_flag(0)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid", error);
   EllipsoidAtoms::require_granular_style(lmp, "Fix wall/gran/ellipsoid");
@@ -203,27 +203,22 @@ void FixWallGranEllipsoid::init()
 }
 
 /* ----------------------------------------------------------------------
-   shortest Hertz contact time against the walls: per type the lightest atom and the
-   flattest surface, at the impact speed (keyword, or the fastest atom of the group)
+   shortest Hertz contact and damping times against the walls: per type the lightest atom
+   and the flattest surface, at the impact speed (keyword, or the fastest atom of the group)
 ------------------------------------------------------------------------- */
 
 void FixWallGranEllipsoid::update_contact_time()
 {
   const ContactScales scales = contact_scales(lmp, groupbit);
   const double speed = impact_velocity > 0.0 ? impact_velocity : scales.fastest_speed;
-  double shortest = 0.0;
-  int type = 0;
+  ContactTimes times;
   for (int t = 1; t <= atom->ntypes; t++) {
-    if (!(scales.lightest_mass[t] > 0.0 && speed > 0.0)) continue;
-    const double time = hertz_contact_time(law.hertz_stiffness(scales.flattest_radius[t]),
-                                           scales.lightest_mass[t], speed);
-    if (shortest == 0.0 || time < shortest) {
-      shortest = time;
-      type = t;
-    }
+    const double mass = scales.lightest_mass[t], radius = scales.flattest_radius[t];
+    if (!(mass > 0.0 && speed > 0.0)) continue;
+    times.add(hertz_contact_time(law.hertz_stiffness(radius), mass, speed),
+              damping_time(law, radius, mass, speed), fmt::format("type {}", t));
   }
-  report_contact_time(lmp, "Fix wall/gran/ellipsoid", shortest, fmt::format("type {}", type), speed,
-                      contact_time_reported);
+  report_contact_times(lmp, "Fix wall/gran/ellipsoid", times, speed, times_reported);
 }
 
 /* ----------------------------------------------------------------------

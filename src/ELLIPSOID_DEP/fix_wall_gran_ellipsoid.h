@@ -11,6 +11,7 @@
 #include "fix.h"
 
 #include "ellipsoid_force_law.h"
+#include "granular_contact_time.h"
 
 #include <vector>
 
@@ -51,7 +52,7 @@ class FixWallGranEllipsoid : public Fix {
   double **history_one;    // per atom, per wall
   bool history_update;
   double impact_velocity;          // keyword; 0: the fastest atom of the group
-  double contact_time_reported;    // last Hertz contact time logged
+  ContactTimes times_reported;    // last contact and damping times logged
   void update_contact_time();
 
   std::vector<double> wall_force;        // local sums, 3 per wall

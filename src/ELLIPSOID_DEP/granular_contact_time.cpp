@@ -46,21 +46,56 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
   return scales;
 }
 
-void LAMMPS_NS::report_contact_time(LAMMPS *lmp, const std::string &who, double time,
-                                    const std::string &where, double speed, double &last_reported)
+void ContactTimes::add(double contact, double damping, const std::string &where)
 {
-  if (!(time > 0.0) || lmp->comm->me != 0) return;
+  if (contact_time == 0.0 || contact < contact_time) {
+    contact_time = contact;
+    contact_where = where;
+  }
+  if (damping_time == 0.0 || damping < damping_time) {
+    damping_time = damping;
+    damping_where = where;
+  }
+}
+
+namespace {
+bool changed(double time, double last) { return !(last > 0.0 && std::fabs(time / last - 1.0) < 0.1); }
+}    // namespace
+
+void LAMMPS_NS::report_contact_times(LAMMPS *lmp, const std::string &who,
+                                     const ContactTimes &times, double speed,
+                                     ContactTimes &last_reported)
+{
+  if (!(times.contact_time > 0.0) || lmp->comm->me != 0) return;
   const double dt = lmp->update->dt;
-  if (!(last_reported > 0.0 && std::fabs(time / last_reported - 1.0) < 0.1)) {
+  if (changed(times.contact_time, last_reported.contact_time)) {
     utils::logmesg(lmp,
                    "{}: Hertz contact time {:.6g} ({}, impact speed {:.6g}) = {:.1f} time steps\n",
-                   who, time, where, speed, time / dt);
-    last_reported = time;
+                   who, times.contact_time, times.contact_where, speed, times.contact_time / dt);
+    last_reported.contact_time = times.contact_time;
   }
-  if (dt > CONTACT_TIME_FRACTION * time)
+  if (dt > CONTACT_TIME_FRACTION * times.contact_time)
     lmp->error->warning(FLERR,
                         "{}: timestep {:.6g} exceeds {} of the Hertz contact time {:.6g} ({}, "
                         "impact speed {:.6g}): contacts are resolved by fewer than {:.0f} steps",
-                        who, dt, CONTACT_TIME_FRACTION, time, where, speed,
-                        1.0 / CONTACT_TIME_FRACTION);
+                        who, dt, CONTACT_TIME_FRACTION, times.contact_time, times.contact_where,
+                        speed, 1.0 / CONTACT_TIME_FRACTION);
+  // an undamped law has no damping time to report
+  if (!std::isfinite(times.damping_time)) return;
+  const double number = dt / times.damping_time;
+  if (changed(times.damping_time, last_reported.damping_time)) {
+    utils::logmesg(lmp,
+                   "{}: damping number {:.3g} ({}, impact speed {:.6g}): the time step over "
+                   "the damping time m*/gamma {:.6g} at the deepest overlap\n",
+                   who, number, times.damping_where, speed, times.damping_time);
+    last_reported.damping_time = times.damping_time;
+  }
+  if (number > DAMPING_NUMBER_BOUND)
+    lmp->error->warning(FLERR,
+                        "{}: damping number {:.3g} ({}, impact speed {:.6g}) exceeds {}: timestep "
+                        "{:.6g} over the damping time {:.6g}; velocity Verlet damps a head-on "
+                        "contact stably only below 2, an off-centre one of an elongated particle "
+                        "below less",
+                        who, number, times.damping_where, speed, DAMPING_NUMBER_BOUND, dt,
+                        times.damping_time);
 }

@@ -1,8 +1,10 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   ELLIPSOID_DEP: the Hertz contact time a run must resolve, for the pair style and the wall.
+   ELLIPSOID_DEP: the time scales of a contact a run must resolve, for the pair style and the
+   wall: the Hertz contact time and the damping time m* / gamma at the deepest overlap.
    Per type the lightest atom and the flattest surface (largest Gaussian curvature radius,
-   ab/c for semi-axes a >= b >= c) give the shortest contact of that type; the styles combine
-   them with their laws (EllipsoidDep::hertz_contact_time) and report the shortest.
+   ab/c for semi-axes a >= b >= c) give the shortest of that type; the styles combine them
+   with their laws (EllipsoidDep::hertz_contact_time, EllipsoidDep::damping_time) and report
+   the shortest.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANULAR_CONTACT_TIME_H
@@ -16,6 +18,10 @@ class LAMMPS;
 
 // dt above this fraction of the shortest contact time is warned about
 constexpr double CONTACT_TIME_FRACTION = 0.1;
+// dt above this many damping times is warned about. Velocity Verlet damps a contact stably
+// only below 2; the margin is for off-centre contacts of elongated particles, whose rotation
+// lowers the effective mass below the head-on m* (doc/robustness.md, the damping bound).
+constexpr double DAMPING_NUMBER_BOUND = 1.0;
 
 struct ContactScales {
   std::vector<double> lightest_mass;      // per type (1..ntypes); 0: no atom of the type
@@ -26,12 +32,22 @@ struct ContactScales {
 // Over the atoms of the group, on all ranks (collective).
 ContactScales contact_scales(LAMMPS *lmp, int groupbit);
 
-// Logs "who: Hertz contact time ..." on rank 0 and warns when the timestep exceeds
-// CONTACT_TIME_FRACTION of it; where: which contact ("types 1 2"), speed: the impact speed.
-// The log line is left out while time stays within 10 % of last_reported (rank 0's last
-// logged value, updated); the warning is repeated at every run start.
-void report_contact_time(LAMMPS *lmp, const std::string &who, double time, const std::string &where,
-                         double speed, double &last_reported);
+// The shortest contact and damping times of a style and which contact has them
+// ("types 1 2"); 0: undefined (no atoms, or at rest).
+struct ContactTimes {
+  double contact_time = 0.0, damping_time = 0.0;
+  std::string contact_where, damping_where;
+  // keeps the shorter of each
+  void add(double contact, double damping, const std::string &where);
+};
+
+// Logs "who: Hertz contact time ..." and "who: damping number ..." on rank 0 and warns when
+// the timestep exceeds CONTACT_TIME_FRACTION of the contact time or DAMPING_NUMBER_BOUND
+// damping times; speed: the impact speed. A log line is left out while its time stays within
+// 10 % of last_reported (rank 0's last logged values, updated); the warnings are repeated at
+// every run start.
+void report_contact_times(LAMMPS *lmp, const std::string &who, const ContactTimes &times,
+                          double speed, ContactTimes &last_reported);
 }    // namespace LAMMPS_NS
 
 #endif

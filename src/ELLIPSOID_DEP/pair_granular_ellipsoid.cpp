@@ -35,7 +35,7 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
     freeze_group_bit(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
-    contact_time_reported(0.0)
+    damping_time(0.0)
 {
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default
   // transfer, which negates every value when i and j swap, exactly the PairCache swap rule.
@@ -49,11 +49,12 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   single_extra = 10;
   svector = new double[single_extra];
   // the counters, for "compute ID all pair granular/ellipsoid" (which sums them over ranks),
-  // then the contact time (rank 0 holds it, the others 0, so that the sum is its value)
-  nextra = NUM_COUNTERS + 1;
+  // then the contact and damping times (rank 0 holds them, the others 0, so that the sum is
+  // their value)
+  nextra = NUM_COUNTERS + 2;
   pvector = new double[nextra];
   local_counters(pvector);
-  pvector[NUM_COUNTERS] = 0.0;
+  pvector[NUM_COUNTERS] = pvector[NUM_COUNTERS + 1] = 0.0;
   for (double &c : counters_extracted) c = 0.0;
 
   // placeholder so the history fix keeps its place in the fix list (as pair granular does)
@@ -297,16 +298,16 @@ bool PairGranularEllipsoid::law_of_pair(int i, int j, ForceLaw &law, std::string
 }
 
 /* ----------------------------------------------------------------------
-   shortest Hertz contact time over the type pairs with atoms: the lightest atoms and the
-   flattest surfaces of each type, at the impact speed (keyword, or twice the fastest atom)
+   shortest Hertz contact and damping times over the type pairs with atoms: the lightest
+   atoms and the flattest surfaces of each type, at the impact speed (keyword, or twice the
+   fastest atom)
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::update_contact_time()
 {
   const ContactScales scales = contact_scales(lmp, 1);
   const double speed = impact_velocity > 0.0 ? impact_velocity : 2.0 * scales.fastest_speed;
-  contact_time = 0.0;
-  int ti = 0, tj = 0;
+  ContactTimes times;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       const double mi = scales.lightest_mass[i], mj = scales.lightest_mass[j];
@@ -314,18 +315,16 @@ void PairGranularEllipsoid::update_contact_time()
       ForceLaw law;
       std::string refusal;
       if (!law_of_pair(i, j, law, refusal)) continue;    // init_one reports it
-      const double ri = scales.flattest_radius[i], rj = scales.flattest_radius[j];
-      const double time = hertz_contact_time(law.hertz_stiffness(effective_radius(ri, rj)),
-                                             mi * mj / (mi + mj), speed);
-      if (contact_time == 0.0 || time < contact_time) {
-        contact_time = time;
-        ti = i;
-        tj = j;
-      }
+      const double radius = effective_radius(scales.flattest_radius[i], scales.flattest_radius[j]);
+      const double mass = mi * mj / (mi + mj);
+      times.add(hertz_contact_time(law.hertz_stiffness(radius), mass, speed),
+                EllipsoidDep::damping_time(law, radius, mass, speed), fmt::format("types {} {}", i, j));
     }
+  contact_time = times.contact_time;
+  damping_time = times.damping_time;
   pvector[NUM_COUNTERS] = comm->me == 0 ? contact_time : 0.0;
-  LAMMPS_NS::report_contact_time(lmp, "Pair granular/ellipsoid", contact_time,
-                                 fmt::format("types {} {}", ti, tj), speed, contact_time_reported);
+  pvector[NUM_COUNTERS + 1] = comm->me == 0 ? damping_time : 0.0;
+  report_contact_times(lmp, "Pair granular/ellipsoid", times, speed, times_reported);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -359,8 +358,9 @@ double PairGranularEllipsoid::init_one(int i, int j)
 }
 
 /* ----------------------------------------------------------------------
-   the counters (extract_counters), or "contact_time": the shortest Hertz contact time of
-   the last run start (dim 0; 0: no moving atoms to judge by)
+   the counters (extract_counters), "contact_time": the shortest Hertz contact time of the
+   last run start, or "damping_time": its shortest damping time (dim 0; 0: no moving atoms
+   to judge by; HUGE_VAL: no damping)
 ------------------------------------------------------------------------- */
 
 void *PairGranularEllipsoid::extract(const char *name, int &dim)
@@ -369,6 +369,10 @@ void *PairGranularEllipsoid::extract(const char *name, int &dim)
   if (std::strcmp(name, "contact_time") == 0) {
     dim = 0;
     return (void *) &contact_time;
+  }
+  if (std::strcmp(name, "damping_time") == 0) {
+    dim = 0;
+    return (void *) &damping_time;
   }
   return nullptr;
 }

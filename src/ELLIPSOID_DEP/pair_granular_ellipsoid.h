@@ -10,6 +10,7 @@
 #include "pair.h"
 
 #include "ellipsoid_force_law.h"
+#include "granular_contact_time.h"
 #include "ellipsoid_kernel.h"
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
@@ -88,10 +89,11 @@ class PairGranularEllipsoid : public Pair {
   // per-pair history size of the run that wrote the restart file this pair was read from
   // (0: none read, or no history written)
   int restart_history_size;
-  // shortest Hertz contact time over the type pairs (granular_contact_time.h); 0: undefined
+  // shortest Hertz contact and damping times over the type pairs (granular_contact_time.h);
+  // 0: undefined
   double impact_velocity;    // pair_style impact_velocity; 0: twice the largest atom speed
-  double contact_time;
-  double contact_time_reported;
+  double contact_time, damping_time;
+  ContactTimes times_reported;
   void update_contact_time();
 };
 

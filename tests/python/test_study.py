@@ -135,6 +135,27 @@ def test_deposit_not_at_rest_fails_its_job(tmp_path):
     assert "at_rest 0" in packing.read_text()
 
 
+def test_point_vars_reach_their_point_only(tmp_path):
+    """config point_vars: one point's deposits get its variables over vars; a name that is no
+    point of the study is refused"""
+    config = yaml.safe_load(open(TINY))
+    config["vars"] = {"dtfrac": 0.05, "flytol": 1.0}
+    config["point_vars"] = {"eta1_zeta1_dr0_N100_coulomb": {"dtfrac": 0.03}}
+    path = tmp_path / "vars.yaml"
+    path.write_text(yaml.safe_dump(config))
+    text = run(snakemake(tmp_path, "-n", "-p", config=path), str(tmp_path), 300)
+    commands = [line for line in text.splitlines() if "deposit_run.py" in line]
+    assert len(commands) >= 2
+    for line in commands:
+        mine = "--eta 1 --zeta 1 --dr 0 " in line
+        assert ("--var dtfrac 0.03" in line) == mine and ("--var dtfrac 0.05" in line) != mine
+        assert "--var flytol 1.0" in line
+    config["point_vars"] = {"eta9_zeta1_dr0_N100_coulomb": {"dtfrac": 0.03}}
+    path.write_text(yaml.safe_dump(config))
+    text = run(snakemake(tmp_path, "-n", config=path), str(tmp_path), 300, ok=False)
+    assert "point_vars: 'eta9_zeta1_dr0_N100_coulomb' is not a point of the study" in text
+
+
 def test_table_mean_and_standard_error_over_seeds(tmp_path):
     """study_table.py against numbers computed here: three seeds of one point"""
     res = tmp_path / "results"
@@ -209,9 +230,13 @@ def test_paper_study_definition(tmp_path):
         key = (float(d["eta"]), float(d["zeta"]), float(d["dr"]), d["law"])
         assert int(d["N"]) >= 3000
         points.setdefault(key, set()).add(int(d["seed"]))
-    # one time step for every deposit (the config's vars reach the runner)
+    # one time step for every deposit (the config's vars reach the runner) but the one whose
+    # damping needs a shorter one (point_vars)
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
-    assert commands and all("--var dt 0.0006" in line for line in commands)
+    damped = [line for line in commands if "--eta 2 --zeta 2 --dr 0.6 " in line]
+    assert len(damped) == 2 and all("--var dt 0.00042" in line for line in damped), damped
+    assert all("--var dt 0.0006" in line for line in commands if line not in damped)
+    assert len(commands) > 250
     grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
     for e in grid:
         for z in grid:
