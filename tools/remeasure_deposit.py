@@ -11,8 +11,11 @@ change of the measurement reaches deposits that were poured before it without po
 again. Contacts are the overlaps of the positions; the law does not enter the measurement.
 
 The new packing.dat keeps the keys of the old one that in.deposit does not write (the
-runner's wall_seconds, np, resumed_from) and says `remeasured 1`. --into: write the three
-files to these folders instead (one per RUN_DIR), e.g. a study's results folder.
+runner's wall_seconds, np, resumed_from) and says `remeasured 1`. In place, the first
+measurement stays as packing.dat.orig (and the histograms' .orig). --into: write the three
+files to these folders instead (one per RUN_DIR), e.g. a study's results folder. Dumps written
+before 1 Dec 2026 evening hold 6 digits, so their deposits come back to about 1e-5; newer ones
+to the printed digits.
 """
 import argparse
 import os
@@ -69,7 +72,7 @@ def remeasure(run_dir, into):
         variables = {"measure": data, "measure_steps": values["steps"],
                      "measure_rest": values["at_rest"], "N": values["N"], "eta": values["eta"],
                      "zeta": values["zeta"], "dr": values["delta_r"], "seed": values["seed"],
-                     "dt": "1e-4", "image": "0", "out": tmp}
+                     "image": "0", "out": tmp}
         args = ["-log", os.path.join(tmp, "log.lammps"), "-screen", "none", "-nocite"]
         for key, value in variables.items():
             args += ["-var", key, str(value)]
@@ -83,8 +86,12 @@ def remeasure(run_dir, into):
                     f.write(f"{key} {value}\n")
             f.write("remeasured 1\n")
         os.makedirs(into, exist_ok=True)
+        in_place = os.path.samefile(run_dir, into)
         for name in RESULT_FILES:
-            shutil.copyfile(os.path.join(tmp, name), os.path.join(into, name))
+            target = os.path.join(into, name)
+            if in_place and not os.path.exists(target + ".orig"):
+                shutil.copyfile(target, target + ".orig")
+            shutil.copyfile(os.path.join(tmp, name), target)
     new = dict(read_keys(os.path.join(into, "packing.dat")))
     return values, new
 

@@ -56,7 +56,7 @@ double ForceLaw::damping_coefficient(double effective_radius, double sqrt_overla
   return -2.0 * SQRT_5_6 * beta * std::sqrt(stiffness_n * effective_mass);
 }
 
-double damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
+double hertz_damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
                     double impact_speed)
 {
   const double max_overlap =

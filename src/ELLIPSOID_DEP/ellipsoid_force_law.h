@@ -93,7 +93,7 @@ double hertz_contact_time(double stiffness, double effective_mass, double impact
 // m* / gamma at the deepest overlap of that impact (HUGE_VAL without damping). Velocity Verlet
 // integrates a damper stably only for dt / (m*/gamma) < 2: dt over this time is the damping
 // number a run must keep small.
-double damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
+double hertz_damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
                     double impact_speed);
 
 // A named material of the materials file, in the units of the simulation.

@@ -199,7 +199,7 @@ void FixWallGranEllipsoid::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix wall/gran/ellipsoid does not support run_style respa");
-  update_contact_time();
+  update_contact_times();
 }
 
 /* ----------------------------------------------------------------------
@@ -207,7 +207,7 @@ void FixWallGranEllipsoid::init()
    and the flattest surface, at the impact speed (keyword, or the fastest atom of the group)
 ------------------------------------------------------------------------- */
 
-void FixWallGranEllipsoid::update_contact_time()
+void FixWallGranEllipsoid::update_contact_times()
 {
   const ContactScales scales = contact_scales(lmp, groupbit);
   const double speed = impact_velocity > 0.0 ? impact_velocity : scales.fastest_speed;
@@ -216,7 +216,7 @@ void FixWallGranEllipsoid::update_contact_time()
     const double mass = scales.lightest_mass[t], radius = scales.flattest_radius[t];
     if (!(mass > 0.0 && speed > 0.0)) continue;
     times.add(hertz_contact_time(law.hertz_stiffness(radius), mass, speed),
-              damping_time(law, radius, mass, speed), fmt::format("type {}", t));
+              hertz_damping_time(law, radius, mass, speed), fmt::format("type {}", t));
   }
   report_contact_times(lmp, "Fix wall/gran/ellipsoid", times, speed, times_reported);
 }

@@ -53,7 +53,7 @@ class FixWallGranEllipsoid : public Fix {
   bool history_update;
   double impact_velocity;          // keyword; 0: the fastest atom of the group
   ContactTimes times_reported;    // last contact and damping times logged
-  void update_contact_time();
+  void update_contact_times();
 
   std::vector<double> wall_force;        // local sums, 3 per wall
   std::vector<double> wall_force_all;    // summed over ranks

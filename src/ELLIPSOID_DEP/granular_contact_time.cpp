@@ -68,6 +68,9 @@ void LAMMPS_NS::report_contact_times(LAMMPS *lmp, const std::string &who,
 {
   if (!(times.contact_time > 0.0) || lmp->comm->me != 0) return;
   const double dt = lmp->update->dt;
+  // a new timestep changes the steps per contact and the damping number: log both again
+  if (dt != last_reported.timestep) last_reported = ContactTimes();
+  last_reported.timestep = dt;
   if (changed(times.contact_time, last_reported.contact_time)) {
     utils::logmesg(lmp,
                    "{}: Hertz contact time {:.6g} ({}, impact speed {:.6g}) = {:.1f} time steps\n",
@@ -94,8 +97,8 @@ void LAMMPS_NS::report_contact_times(LAMMPS *lmp, const std::string &who,
     lmp->error->warning(FLERR,
                         "{}: damping number {:.3g} ({}, impact speed {:.6g}) exceeds {}: timestep "
                         "{:.6g} over the damping time {:.6g}; velocity Verlet damps a head-on "
-                        "contact stably only below 2, an off-centre one of an elongated particle "
-                        "below less",
+                        "contact stably only below 2, and an off-centre contact of an elongated "
+                        "particle has a smaller effective mass",
                         who, number, times.damping_where, speed, DAMPING_NUMBER_BOUND, dt,
                         times.damping_time);
 }

@@ -3,7 +3,7 @@
    wall: the Hertz contact time and the damping time m* / gamma at the deepest overlap.
    Per type the lightest atom and the flattest surface (largest Gaussian curvature radius,
    ab/c for semi-axes a >= b >= c) give the shortest of that type; the styles combine them
-   with their laws (EllipsoidDep::hertz_contact_time, EllipsoidDep::damping_time) and report
+   with their laws (EllipsoidDep::hertz_contact_time, EllipsoidDep::hertz_damping_time) and report
    the shortest.
 ------------------------------------------------------------------------- */
 
@@ -18,9 +18,10 @@ class LAMMPS;
 
 // dt above this fraction of the shortest contact time is warned about
 constexpr double CONTACT_TIME_FRACTION = 0.1;
-// dt above this many damping times is warned about. Velocity Verlet damps a contact stably
-// only below 2; the margin is for off-centre contacts of elongated particles, whose rotation
-// lowers the effective mass below the head-on m* (doc/robustness.md, the damping bound).
+// dt above this many damping times (of the head-on contact) is warned about. Velocity Verlet
+// damps a head-on contact stably only below 2. Off-centre contacts of elongated particles have
+// a smaller effective mass (rotation joins in), which no head-on number bounds: the margin is
+// empirical (a deposit that blew up at 1.28 reached rest at 0.99; doc/robustness.md, bug 4).
 constexpr double DAMPING_NUMBER_BOUND = 1.0;
 
 struct ContactScales {
@@ -35,17 +36,18 @@ ContactScales contact_scales(LAMMPS *lmp, int groupbit);
 // The shortest contact and damping times of a style and which contact has them
 // ("types 1 2"); 0: undefined (no atoms, or at rest).
 struct ContactTimes {
-  double contact_time = 0.0, damping_time = 0.0;
+  double contact_time = 0.0, damping_time = 0.0;    // damping: HUGE_VAL for an undamped law
   std::string contact_where, damping_where;
+  double timestep = 0.0;    // of the last report (last_reported only)
   // keeps the shorter of each
   void add(double contact, double damping, const std::string &where);
 };
 
 // Logs "who: Hertz contact time ..." and "who: damping number ..." on rank 0 and warns when
 // the timestep exceeds CONTACT_TIME_FRACTION of the contact time or DAMPING_NUMBER_BOUND
-// damping times; speed: the impact speed. A log line is left out while its time stays within
-// 10 % of last_reported (rank 0's last logged values, updated); the warnings are repeated at
-// every run start.
+// damping times; speed: the impact speed. The log lines are left out while the timestep is
+// that of last_reported (rank 0's last logged values, updated) and each time stays within 10 %
+// of it; the warnings are repeated at every run start.
 void report_contact_times(LAMMPS *lmp, const std::string &who, const ContactTimes &times,
                           double speed, ContactTimes &last_reported);
 }    // namespace LAMMPS_NS

@@ -272,7 +272,7 @@ void PairGranularEllipsoid::init_style()
     local[atom->type[i]] = MAX(local[atom->type[i]], atoms.bounding_radius(i));
   MPI_Allreduce(local.data(), max_bounding_dynamic, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
 
-  update_contact_time();
+  update_contact_times();
 }
 
 /* ----------------------------------------------------------------------
@@ -303,7 +303,7 @@ bool PairGranularEllipsoid::law_of_pair(int i, int j, ForceLaw &law, std::string
    fastest atom)
 ------------------------------------------------------------------------- */
 
-void PairGranularEllipsoid::update_contact_time()
+void PairGranularEllipsoid::update_contact_times()
 {
   const ContactScales scales = contact_scales(lmp, 1);
   const double speed = impact_velocity > 0.0 ? impact_velocity : 2.0 * scales.fastest_speed;
@@ -318,10 +318,10 @@ void PairGranularEllipsoid::update_contact_time()
       const double radius = effective_radius(scales.flattest_radius[i], scales.flattest_radius[j]);
       const double mass = mi * mj / (mi + mj);
       times.add(hertz_contact_time(law.hertz_stiffness(radius), mass, speed),
-                EllipsoidDep::damping_time(law, radius, mass, speed), fmt::format("types {} {}", i, j));
+                hertz_damping_time(law, radius, mass, speed), fmt::format("types {} {}", i, j));
     }
   contact_time = times.contact_time;
-  damping_time = times.damping_time;
+  damping_time = std::isfinite(times.damping_time) ? times.damping_time : 0.0;
   pvector[NUM_COUNTERS] = comm->me == 0 ? contact_time : 0.0;
   pvector[NUM_COUNTERS + 1] = comm->me == 0 ? damping_time : 0.0;
   report_contact_times(lmp, "Pair granular/ellipsoid", times, speed, times_reported);
@@ -360,7 +360,7 @@ double PairGranularEllipsoid::init_one(int i, int j)
 /* ----------------------------------------------------------------------
    the counters (extract_counters), "contact_time": the shortest Hertz contact time of the
    last run start, or "damping_time": its shortest damping time (dim 0; 0: no moving atoms
-   to judge by; HUGE_VAL: no damping)
+   to judge by, or for the damping time an undamped law)
 ------------------------------------------------------------------------- */
 
 void *PairGranularEllipsoid::extract(const char *name, int &dim)

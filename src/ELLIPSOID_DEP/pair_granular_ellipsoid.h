@@ -89,12 +89,12 @@ class PairGranularEllipsoid : public Pair {
   // per-pair history size of the run that wrote the restart file this pair was read from
   // (0: none read, or no history written)
   int restart_history_size;
-  // shortest Hertz contact and damping times over the type pairs (granular_contact_time.h);
-  // 0: undefined
   double impact_velocity;    // pair_style impact_velocity; 0: twice the largest atom speed
+  // shortest Hertz contact and damping times over the type pairs (granular_contact_time.h);
+  // 0: undefined (no moving atoms; for the damping time also an undamped law)
   double contact_time, damping_time;
   ContactTimes times_reported;
-  void update_contact_time();
+  void update_contact_times();
 };
 
 }    // namespace LAMMPS_NS

@@ -63,6 +63,7 @@ def hertz_time(stiffness, m_eff, speed):
     ("default", {}, "damping"),
     ("stiff_low_drop", {"kn": "4.0e4", "zpour": "3.0", "vdrop": "2.0", "dr": "0.3",
                         "eta": "2.0"}, "contact"),
+    ("undamped", {"K": "0"}, "contact"),
 ])
 def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, variables,
                                                                bound_by):
@@ -70,13 +71,18 @@ def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, v
         tmp_path, name, variables)
     reports = [(float(t), float(v)) for t, v in REPORT.findall(log)]
     damping_reports = [float(t) for t in DAMPING.findall(log)]
-    assert reports and damping_reports, "the pair reported no contact or damping time"
+    undamped = float(variables.get("K", "200.0")) == 0
+    assert reports, "the pair reported no contact time"
+    assert bool(damping_reports) != undamped, "a damping time, and only for a damped law"
     probe_time, speed = reports[0]
     # the pair's reports are the times the input used, and dt the stated fraction of the shorter
     assert tc == pytest.approx(probe_time, rel=1e-5)
-    assert tdamp == pytest.approx(damping_reports[0], rel=1e-5)
-    assert dt == pytest.approx(min(dtfrac * tc, dtdamp * tdamp), rel=1e-12)
-    assert (dtdamp * tdamp < dtfrac * tc) == (bound_by == "damping")
+    if undamped:    # no damping time: compute pair's entry is 0, dt the contact time's fraction
+        assert tdamp == 0 and dt == pytest.approx(dtfrac * tc, rel=1e-12)
+    else:
+        assert tdamp == pytest.approx(damping_reports[0], rel=1e-5)
+        assert dt == pytest.approx(min(dtfrac * tc, dtdamp * tdamp), rel=1e-12)
+        assert (dtdamp * tdamp < dtfrac * tc) == (bound_by == "damping")
     assert 0 < dtfrac < 0.1 and 0 < dtdamp < 1    # below the pair's warning thresholds
     # the lightest pair the pour can make, meeting at the speed of the drop
     kn = float(variables.get("kn", "1.0e4"))
@@ -95,11 +101,12 @@ def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, v
     assert tc == pytest.approx(hertz_time(kn, mmin / 2, vimpact), rel=1e-10)
     K = float(variables.get("K", "200.0"))
     xi_max = (5 * (mmin / 2) * vimpact**2 / (4 * kn))**0.4
-    assert tdamp == pytest.approx((mmin / 2) / (K * math.sqrt(xi_max)), rel=1e-10)
+    if not undamped:
+        assert tdamp == pytest.approx((mmin / 2) / (K * math.sqrt(xi_max)), rel=1e-10)
     # the poured particles are no lighter, so no later contact is shorter
     assert lightest >= mmin * (1 - 1e-12)
     assert all(t >= probe_time * (1 - 1e-5) for t, _ in reports)
-    assert all(t >= damping_reports[0] * (1 - 1e-5) for t in damping_reports)
+    assert all(t >= damping_reports[0] * (1 - 1e-5) for t in damping_reports[1:])
     assert re.search(r"^time step \S+ = the shorter of \S+ x the Hertz contact time \S+ and "
                      r"\S+ x the damping time", log, re.M)
     assert "ELLIPSOID_DEP deposit: N 100" in log

@@ -5,7 +5,9 @@ Specification:
   histograms the run wrote itself (the dump keeps 10 digits): counts equal, the rest to 1e-6;
 - keys the runner appended (wall_seconds, np) are kept, and `remeasured 1` is added;
 - in.deposit's slab ends two mean diameters below the surface of the column maxima
-  (surface columns), not below the single highest particle.
+  (surface columns): one particle added 2 d above the deposit moves the slab's top by its
+  column's share, not by 2 d;
+- in place, the first measurement is kept as packing.dat.orig.
 """
 import os
 import sys
@@ -53,15 +55,30 @@ def test_remeasure_reproduces_the_run(tmp_path):
             assert new[key] == value, key
         elif key in ("wall_seconds", "np"):
             assert new[key] == value
-        else:
-            assert float(new[key]) == pytest.approx(float(value), rel=1e-6, abs=1e-9), key
+        else:    # one unit of the last printed digit (%.6f)
+            assert float(new[key]) == pytest.approx(float(value), abs=1.1e-6), key
     assert new["remeasured"] == "1"
     for name in ("contact_histo.dat", "orient_histo.dat"):
         a, b = histogram(run / name), histogram(into / name)
         assert len(a) == 18 and len(b) == 18
         for ra, rb in zip(a, b):
-            assert rb == pytest.approx(ra, rel=1e-6, abs=1e-12), name
-    # the slab's top: two mean diameters below the mean of the column maxima
-    text = open(DEPOSIT).read()
-    assert "compute         pack all packing/ellipsoid auto bottom 1 top 2 rattler 2 surface " \
-           "columns" in text
+            assert rb == pytest.approx(ra, rel=1e-5, abs=1e-12), name    # %g: 6 digits
+
+    # one more particle lying 2 d above the highest one, measured again in place
+    lines = open(run / "deposit.dump").read().splitlines()
+    columns = lines[8].split()[2:]
+    rows = [line.split() for line in lines[9:]]
+    z = columns.index("z")
+    top = max(rows, key=lambda r: float(r[z]))
+    extra = list(top)
+    extra[columns.index("id")] = str(len(rows) + 1)
+    extra[z] = repr(float(top[z]) + 2.0)
+    lines[3] = str(len(rows) + 1)
+    zlo, zhi = (float(v) for v in lines[7].split()[:2])
+    lines[7] = "%r %r" % (zlo, zhi + 3.0)    # the box's top, so that it holds the particle
+    (run / "deposit.dump").write_text("\n".join(lines + [" ".join(extra)]) + "\n")
+    _, moved = remeasure_deposit.remeasure(str(run), str(run))
+    shift = float(moved["zhi"]) - float(old["zhi"])
+    assert 0 < shift < 0.15, shift    # its column's share of 2 d (25 columns), not 2 d
+    assert (run / "packing.dat.orig").read_text().startswith("# ELLIPSOID_DEP")
+    assert "remeasured" not in (run / "packing.dat.orig").read_text()
