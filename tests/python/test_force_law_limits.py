@@ -190,15 +190,20 @@ def test_pair_contact_time_and_warning(tmp_path):
     assert t == pytest.approx(expected / 2, rel=1e-12)    # v^(-1/5)
 
 
+def wall_log(tmp_path, law, dt):
+    """the log of run 0 of a sphere falling at SPEED onto a wall of this law"""
+    lmp = h.new_lammps(tmp_path)
+    lmp.commands_string(scenes.sphere_over_wall(RADIUS, 1.0, f"{law} zplane 0 NULL",
+                                                velocity=(0, 0, -SPEED)) +
+                        f"timestep {dt}\nrun 0\n")
+    log = h.read_log(lmp)
+    lmp.close()
+    return log
+
+
 def test_wall_contact_time_and_warning(tmp_path):
     def run(dt):
-        lmp = h.new_lammps(tmp_path)
-        lmp.commands_string(scenes.sphere_over_wall(RADIUS, 1.0, f"hertz {KN} {K} zplane 0 NULL",
-                                                    velocity=(0, 0, -SPEED)) +
-                            f"timestep {dt}\nrun 0\n")
-        log = h.read_log(lmp)
-        lmp.close()
-        return log
+        return wall_log(tmp_path, f"hertz {KN} {K}", dt)
 
     expected = hertz_time(KN, MASS, SPEED)
     log = run(expected / 50)
@@ -272,13 +277,7 @@ def test_wall_damping_time_of_the_restitution_law(tmp_path):
     expected = MASS / gamma
 
     def run(law, dt):
-        lmp = h.new_lammps(tmp_path)
-        lmp.commands_string(scenes.sphere_over_wall(RADIUS, 1.0, f"{law} zplane 0 NULL",
-                                                    velocity=(0, 0, -SPEED)) +
-                            f"timestep {dt}\nrun 0\n")
-        log = h.read_log(lmp)
-        lmp.close()
-        return log
+        return wall_log(tmp_path, law, dt)
 
     log = run(f"hertz/material {youngs} {poisson} {restitution}", expected / 4)
     found = re.search(r"Fix wall/gran/ellipsoid: damping number (\S+) \(type 1, impact speed 1\): "

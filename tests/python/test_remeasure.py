@@ -13,14 +13,12 @@ import os
 import sys
 
 import pytest
-from lammps import lammps
 
-ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
+import ed_helpers_pour as h
+from conftest import root_dir
+
+sys.path.insert(0, os.path.join(root_dir(), "tools"))
 import remeasure_deposit    # noqa: E402
-
-DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 COUNTS = ("N", "steps", "at_rest", "Nslab", "rattlers", "seed")
 
 
@@ -28,12 +26,7 @@ def short_deposit(out):
     """in.deposit, 150 particles, at most 8 chunks of 1000 steps: landed"""
     args = {"N": "150", "maxchunks": "8", "chunk": "1000", "image": "0", "out": str(out),
             "dr": "0.3"}
-    cmd = ["-screen", "none", "-nocite", "-log", str(out / "log.lammps")]
-    for key, value in args.items():
-        cmd += ["-var", key, value]
-    lmp = lammps(cmdargs=cmd)
-    lmp.file(DEPOSIT)
-    lmp.close()
+    h.deposit_lammps(out, args).close()
     with open(out / "packing.dat", "a") as f:    # as the runner appends
         f.write("wall_seconds 12.34\nnp 2\n")
 
