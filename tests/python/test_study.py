@@ -233,8 +233,9 @@ def test_paper_study_definition(tmp_path):
     # one time step for every deposit (the config's vars reach the runner) but the one whose
     # damping needs a shorter one (point_vars)
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
-    damped = [line for line in commands if "--eta 2 --zeta 2 --dr 0.6 " in line]
-    assert len(damped) == 2 and all("--var dt 0.00042" in line for line in damped), damped
+    damped = [line for line in commands if any("--eta %s --zeta %s --dr 0.6 " % (v, v) in line
+                                               for v in ("2", "2.5", "3"))]
+    assert len(damped) == 6 and all("--var dt 0.00042" in line for line in damped), damped
     assert all("--var dt 0.0006" in line for line in commands if line not in damped)
     assert len(commands) > 250
     grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
