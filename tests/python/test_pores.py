@@ -250,12 +250,13 @@ def test_voxel_porosity_converges():
 
 @pytest.fixture(scope="module")
 def deposit(tmp_path_factory):
-    """examples/deposit/in.deposit with 100 particles, stopped once all are in and their
-    kinetic energy is below 0.05 m g d each (checked every 500 steps): small but real"""
+    """examples/deposit/in.deposit with 200 mono-sized particles (about 7 d high, so the slab
+    below the column surface is 4 d thick), stopped once all are in and their kinetic energy
+    is below 0.05 m g d each (checked every 500 steps): small but real"""
     out = tmp_path_factory.mktemp("deposit")
     lmp = new_lammps()
     # the runner passes the tangential law words explicitly, as here
-    for name, value in (("N", 100), ("ketol", 5e-2), ("chunk", 500), ("image", 0),
+    for name, value in (("N", 200), ("dr", 0), ("ketol", 5e-2), ("chunk", 500), ("image", 0),
                         ("out", str(out)), ("seed", 17), ("tangential", '"history 2.0e3 0.5"')):
         lmp.command(f"variable {name} index {value}")
     lmp.file(os.path.join(root_dir(), "examples", "deposit", "in.deposit"))
@@ -268,12 +269,12 @@ def test_deposit_porosity_matches_packing_compute(deposit):
     out, phi = deposit
     particles, box = pores.read_dump(os.path.join(out, "deposit.dump"))
     pk = pores.read_packing(os.path.join(out, "packing.dat"))
-    assert len(particles) == 100
+    assert len(particles) == 200
     zlo, zhi = pk["zlo"], pk["zhi"]
-    assert zhi > zlo
+    assert zhi > zlo + 2.0
     v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
     porosity = 1 - (pores.slab_fraction(particles, zlo, zhi) * particles.volumes).sum() / v_slab
-    # the dump holds 6 significant digits and packing.dat's zlo, zhi 6 decimals
+    # the dump holds 10 significant digits and packing.dat's zlo, zhi 6 decimals
     assert porosity == pytest.approx(1 - phi, abs=2e-5)
     assert porosity == pytest.approx(1 - pk["phi"], abs=2e-5)
     assert 0.25 < porosity < 0.75
