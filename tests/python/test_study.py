@@ -140,25 +140,26 @@ def test_deposit_not_at_rest_fails_its_job(tmp_path):
     assert "at_rest 0" in packing.read_text()
 
 
-def test_point_vars_reach_their_point_only(tmp_path):
-    """config point_vars: one point's deposits get its variables over vars; a name that is no
-    point of the study is refused"""
+def test_delta_r_vars_reach_their_delta_r_only(tmp_path):
+    """config delta_r_vars: the deposits at one delta_r get its variables over vars; a delta_r
+    that is not in the study is refused"""
     config = yaml.safe_load(open(TINY))
+    config["sets"]["spheroids"]["delta_r"] = [0, 0.3]
     config["vars"] = {"dtfrac": 0.05, "flytol": 1.0}
-    config["point_vars"] = {"eta1_zeta1_dr0_N100_coulomb": {"dtfrac": 0.03}}
+    config["delta_r_vars"] = {0.3: {"dtfrac": 0.03}}
     path = tmp_path / "vars.yaml"
     path.write_text(yaml.safe_dump(config))
     text = run(snakemake(tmp_path, "-n", "-p", config=path), str(tmp_path), 300)
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
-    assert len(commands) >= 2
+    assert len(commands) == 5    # 2 shapes x 2 delta_r, and the picture at delta_r 0
     for line in commands:
-        mine = "--eta 1 --zeta 1 --dr 0 " in line
+        mine = " --dr 0.3 " in line
         assert ("--var dtfrac 0.03" in line) == mine and ("--var dtfrac 0.05" in line) != mine
         assert "--var flytol 1.0" in line
-    config["point_vars"] = {"eta9_zeta1_dr0_N100_coulomb": {"dtfrac": 0.03}}
+    config["delta_r_vars"] = {0.6: {"dtfrac": 0.03}}
     path.write_text(yaml.safe_dump(config))
     text = run(snakemake(tmp_path, "-n", config=path), str(tmp_path), 300, ok=False)
-    assert "point_vars: 'eta9_zeta1_dr0_N100_coulomb' is not a point of the study" in text
+    assert "delta_r_vars: delta_r 0.6 is not one of the study's [0.0, 0.3]" in text
 
 
 def test_table_mean_and_standard_error_over_seeds(tmp_path):
@@ -235,12 +236,11 @@ def test_paper_study_definition(tmp_path):
         key = (float(d["eta"]), float(d["zeta"]), float(d["dr"]), d["law"])
         assert int(d["N"]) >= 3000
         points.setdefault(key, set()).add(int(d["seed"]))
-    # one time step for every deposit (the config's vars reach the runner) but the one whose
-    # damping needs a shorter one (point_vars)
+    # one time step for every deposit (the config's vars reach the runner) but those at
+    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars)
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
-    damped = [line for line in commands if any("--eta %s --zeta %s --dr 0.6 " % (v, v) in line
-                                               for v in ("2", "2.5", "3"))]
-    assert len(damped) == 6 and all("--var dt 0.00042" in line for line in damped), damped
+    damped = [line for line in commands if " --dr 0.6 " in line]
+    assert len(damped) == 47 and all("--var dt 0.00042" in line for line in damped), damped
     assert all("--var dt 0.0006" in line for line in commands if line not in damped)
     assert len(commands) > 250
     grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
