@@ -141,25 +141,34 @@ def test_deposit_not_at_rest_fails_its_job(tmp_path):
 
 
 def test_delta_r_vars_reach_their_delta_r_only(tmp_path):
-    """config delta_r_vars: the deposits at one delta_r get its variables over vars; a delta_r
-    that is not in the study is refused"""
+    """config delta_r_vars: the deposits at one delta_r (a number or a string key) get its
+    variables over vars; a delta_r that is not in the study, one given twice and the old
+    point_vars are refused"""
     config = yaml.safe_load(open(TINY))
     config["sets"]["spheroids"]["delta_r"] = [0, 0.3]
     config["vars"] = {"dtfrac": 0.05, "flytol": 1.0}
-    config["delta_r_vars"] = {0.3: {"dtfrac": 0.03}}
+    config["delta_r_vars"] = {"0.3": {"dtfrac": 0.03}, 0: {"flytol": 2.0}}
     path = tmp_path / "vars.yaml"
-    path.write_text(yaml.safe_dump(config))
-    text = run(snakemake(tmp_path, "-n", "-p", config=path), str(tmp_path), 300)
-    commands = [line for line in text.splitlines() if "deposit_run.py" in line]
+
+    def dry_run(ok=True):
+        path.write_text(yaml.safe_dump(config, sort_keys=False))    # keys of mixed types
+        return run(snakemake(tmp_path, "-n", "-p", config=path), str(tmp_path), 300, ok=ok)
+
+    commands = [line for line in dry_run().splitlines() if "deposit_run.py" in line]
     assert len(commands) == 5    # 2 shapes x 2 delta_r, and the picture at delta_r 0
     for line in commands:
-        mine = " --dr 0.3 " in line
-        assert ("--var dtfrac 0.03" in line) == mine and ("--var dtfrac 0.05" in line) != mine
-        assert "--var flytol 1.0" in line
-    config["delta_r_vars"] = {0.6: {"dtfrac": 0.03}}
-    path.write_text(yaml.safe_dump(config))
-    text = run(snakemake(tmp_path, "-n", config=path), str(tmp_path), 300, ok=False)
-    assert "delta_r_vars: delta_r 0.6 is not one of the study's [0.0, 0.3]" in text
+        at_03 = " --dr 0.3 " in line
+        assert ("--var dtfrac 0.03" in line) == at_03 and ("--var dtfrac 0.05" in line) != at_03
+        assert ("--var flytol 1.0" in line) == at_03 and ("--var flytol 2.0" in line) != at_03
+    for bad, message in (({0.6: {"dtfrac": 0.03}},
+                          "delta_r_vars: delta_r 0.6 is not one of the study's ['0', '0.3']"),
+                         ({0.3: {"dtfrac": 0.03}, "0.3": {"dtfrac": 0.04}},
+                          "delta_r_vars: delta_r 0.3 is given twice")):
+        config["delta_r_vars"] = bad
+        assert message in dry_run(ok=False)
+    del config["delta_r_vars"]
+    config["point_vars"] = {"eta1_zeta1_dr0_N100_coulomb": {"dtfrac": 0.03}}
+    assert "point_vars was replaced by delta_r_vars" in dry_run(ok=False)
 
 
 def test_table_mean_and_standard_error_over_seeds(tmp_path):
@@ -237,7 +246,7 @@ def test_paper_study_definition(tmp_path):
         assert int(d["N"]) >= 3000
         points.setdefault(key, set()).add(int(d["seed"]))
     # one time step for every deposit (the config's vars reach the runner) but those at
-    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars)
+    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars): 46 deposits and the picture
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
     damped = [line for line in commands if " --dr 0.6 " in line]
     assert len(damped) == 47 and all("--var dt 0.00042" in line for line in damped), damped
