@@ -11,23 +11,27 @@ namespace EllipsoidDep {
 
 namespace {
 
-  // The geometry of a contact with unit normal n (A to B) and the two surface points.
-  void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const Vec3 &point_a,
-                     const Vec3 &point_b, double overlap, ContactGeometry &g)
+  // The geometry of a contact with unit normal n (A to B), the two surface points and R*.
+  void fill_geometry(const Vec3 &n, const Vec3 &point_a, const Vec3 &point_b, double overlap,
+                     double radius, ContactGeometry &g)
   {
     g.normal = n;
     g.overlap = overlap;
     g.point_a = point_a;
     g.point_b = point_b;
     g.point = 0.5 * (point_a + point_b);
-    g.effective_radius = effective_radius(a, b, n);
+    g.effective_radius = radius;
   }
 
-  // ... at the support points of n, where the overlap is d(n)
+  // ... at the support points of n, where the overlap is d(n); R* from the support
+  // half-widths h = sqrt(n^T M n) the evaluation already has
   void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const GapEval &ev,
                      ContactGeometry &g)
   {
-    fill_geometry(a, b, n, a.center + ev.ua, b.center - ev.ub, ev.d, g);
+    fill_geometry(n, a.center + ev.ua, b.center - ev.ub, ev.d,
+                  effective_radius(gaussian_radius_of_nmn(a, ev.ha * ev.ha),
+                                   gaussian_radius_of_nmn(b, ev.hb * ev.hb)),
+                  g);
   }
 
   // The fast mode's test: the angle between dir and the average of the unit surface gradients
@@ -120,7 +124,7 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
       overlap = ev.d;
     }
     if (gradients_agree(a, b, 0.5 * (xa + xb), n0, settings.correction_angle)) {
-      fill_geometry(a, b, n0, xa, xb, overlap, g);
+      fill_geometry(n0, xa, xb, overlap, effective_radius(a, b, n0), g);
       g.iterations = it0;
       g.corrected = false;
       g.status = g.overlap > 0.0 ? Status::Overlapping : Status::Separated;
