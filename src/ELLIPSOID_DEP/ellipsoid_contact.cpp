@@ -76,16 +76,20 @@ ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b)
 ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
                                   const ContactSettings &settings, const Vec3 *warm_normal)
 {
-  // one result object returned on every path, so that it is built in the caller's place
-  ContactGeometry g;
   if (!valid(a) || !valid(b)) {
+    ContactGeometry g;
     g.status = Status::Degenerate;
     return g;
   }
-  if (a.sphere && b.sphere) {
-    g = sphere_contact(a, b);
-    return g;
-  }
+  if (a.sphere && b.sphere) return sphere_contact(a, b);
+  return valid_ellipsoid_contact(a, b, settings, warm_normal);
+}
+
+ContactGeometry valid_ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
+                                        const ContactSettings &settings, const Vec3 *warm_normal)
+{
+  // one result object returned on every path, so that it is built in the caller's place
+  ContactGeometry g;
   const Vec3 dc = b.center - a.center;
   const double tol = settings.tolerance > 0.0 ? settings.tolerance : 1e-12;
   const int max_iter = std::max(settings.max_iterations, 1);

@@ -80,10 +80,10 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
       // no plane to round-off: fall through to the exact iteration
     }
   }
-  // two valid spheres: ellipsoid_contact's closed form, without its checks made above
+  // ellipsoid_contact without its validity checks, made above (two spheres: its closed form)
   ContactGeometry g = a.sphere && b.sphere
       ? sphere_contact(a, b)
-      : ellipsoid_contact(a, b, settings.contact, have_n ? &cached_n : nullptr);
+      : valid_ellipsoid_contact(a, b, settings.contact, have_n ? &cached_n : nullptr);
   counters.iterations += g.iterations;
   if (g.corrected) ++counters.corrections;
   if (g.status == Status::Degenerate) {
