@@ -56,11 +56,13 @@ class PairCache {
   // true while the cache keeps a plane or a normal (engines keep such pairs' history)
   bool in_use() const { return v[STATE] != 0.0; }
   Vec3 normal() const { return Vec3(v[NORMAL], v[NORMAL + 1], v[NORMAL + 2]); }
-  // the cached normal when there is one and it is plausibly unit (false otherwise)
+  // the cached normal when there is one and it is plausibly unit, 1/2 < |n| < 2 (false
+  // otherwise); one test of |n|^2, which any NaN or infinite component fails
   bool usable_normal(Vec3 &n) const
   {
     n = normal();
-    return state() != State::Empty && finite3(n) && n.squaredNorm() > 0.25;
+    const double n2 = n.squaredNorm();
+    return state() != State::Empty && n2 > 0.25 && n2 < 4.0;
   }
   // the cached plane, for the current centre c_A and dc = c_B - c_A
   SeparatingPlane plane(const Vec3 &ca, const Vec3 &dc) const
