@@ -52,7 +52,8 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
       return decided(Status::Separated, cached_n);
     }
   }
-  if (!valid(a) || !valid(b) || !std::isfinite(dist)) {
+  // valid(a) && valid(b) without their centre tests: a finite |c_B - c_A| has finite centres
+  if (!a.finite || !b.finite || !std::isfinite(dist)) {
     ++counters.degenerate;
     history.clear();
     return decided(Status::Degenerate);
