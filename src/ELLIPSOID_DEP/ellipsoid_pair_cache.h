@@ -73,6 +73,17 @@ class PairCache {
     return pl;
   }
 
+  // plane_separates() for the cached plane (normal n), in the centres' own terms: with
+  // nd = n.dc it holds A below when h_A(n) < (1/2 + u) nd and B above when h_B(-n) < (1/2 - u) nd;
+  // no absolute offset is formed. Any NaN makes it false.
+  bool plane_separates(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc) const
+  {
+    const Vec3 n = normal();
+    const double nd = n.dot(dc), u = v[PLANE_U];
+    return std::sqrt(n.dot(a.inverse_form * n)) < (0.5 + u) * nd &&
+        std::sqrt(n.dot(b.inverse_form * n)) < (0.5 - u) * nd;
+  }
+
   // the plane {n.x = offset} as (n, u); a plane that does not cross the centre line (n.dc <= 0)
   // cannot be stored and clears the cache
   void store_plane(const Vec3 &n, double offset, const Vec3 &ca, const Vec3 &dc)

@@ -45,9 +45,8 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   Vec3 cached_n;
   const bool have_n = history.usable_normal(cached_n);
   if (state == PairCache::State::Plane && have_n && settings.use_planes) {
-    const SeparatingPlane pl = history.plane(a.center, dc);
     // any NaN makes the test false, so invalid input cannot hit here
-    if (plane_separates(pl, a, b)) {
+    if (history.plane_separates(a, b, dc)) {
       ++counters.plane_hits;
       return decided(Status::Separated, cached_n);
     }

@@ -420,6 +420,7 @@ TEST(Pipeline, CachedPlaneAndSwap)
     const Vec3 dc = c.b.center - c.a.center;
     const SeparatingPlane pl = history.plane(c.a.center, dc);
     EXPECT_TRUE(plane_separates(pl, c.a, c.b));
+    EXPECT_TRUE(history.plane_separates(c.a, c.b, dc));    // the same test relative to the centres
     // second call with the same positions: the cached plane hits
     g = evaluate_pair(c.a, c.b, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Separated);
@@ -434,6 +435,7 @@ TEST(Pipeline, CachedPlaneAndSwap)
     EXPECT_EQ(cnt.plane_hits, 2);
     // move B into contact: plane fails, contact computed warm, state 2
     const Ellipsoid b2 = place_b(c.a, c.b.rotation, c.b.semi_axes, c.n, 1e-3 * c.size);
+    EXPECT_FALSE(history.plane_separates(c.a, b2, b2.center - c.a.center));
     g = evaluate_pair(c.a, b2, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Overlapping);
     EXPECT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Contact));
