@@ -64,7 +64,9 @@ class PairCache {
     const double n2 = n.squaredNorm();
     return state() != State::Empty && n2 > 0.25 && n2 < 4.0;
   }
-  // the cached plane, for the current centre c_A and dc = c_B - c_A
+  // the cached plane in absolute terms {n.x = offset}, for the current centre c_A and
+  // dc = c_B - c_A (the pipeline tests it with plane_separates() below; the tests check that
+  // both agree with the Wang test's plane_separates())
   SeparatingPlane plane(const Vec3 &ca, const Vec3 &dc) const
   {
     SeparatingPlane pl;
@@ -75,12 +77,13 @@ class PairCache {
 
   // plane_separates() for the cached plane (normal n), in the centres' own terms: with
   // nd = n.dc it holds A below when h_A(n) < (1/2 + u) nd and B above when h_B(-n) < (1/2 - u) nd;
-  // no absolute offset is formed. Any NaN makes it false.
+  // no absolute offset is formed. Any NaN or an infinite n.dc (a centre at infinity, which
+  // would pass both comparisons) makes it false.
   bool plane_separates(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc) const
   {
     const Vec3 n = normal();
     const double nd = n.dot(dc), u = v[PLANE_U];
-    return std::sqrt(n.dot(a.inverse_form * n)) < (0.5 + u) * nd &&
+    return std::isfinite(nd) && std::sqrt(n.dot(a.inverse_form * n)) < (0.5 + u) * nd &&
         std::sqrt(n.dot(b.inverse_form * n)) < (0.5 - u) * nd;
   }
 

@@ -45,7 +45,7 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   Vec3 cached_n;
   const bool have_n = history.usable_normal(cached_n);
   if (state == PairCache::State::Plane && have_n && settings.use_planes) {
-    // any NaN makes the test false, so invalid input cannot hit here
+    // any NaN or an infinite n.dc makes the test false, so invalid input cannot hit here
     if (history.plane_separates(a, b, dc)) {
       ++counters.plane_hits;
       return decided(Status::Separated, cached_n);

@@ -104,7 +104,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
     int *jlist = firstneigh[i];
     int *touch = firsttouch[i];
     const int jnum = numneigh[i];
-    double *const first_history = pair_history(i, 0);    // neighbour jj's at stride * jj
+    double *const first_history = pair_history(i, 0);    // jj's at stride * jj, as pair_history
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
