@@ -11,23 +11,27 @@ namespace EllipsoidDep {
 
 namespace {
 
-  // The geometry of a contact with unit normal n (A to B) and the two surface points.
-  void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const Vec3 &point_a,
-                     const Vec3 &point_b, double overlap, ContactGeometry &g)
+  // The geometry of a contact with unit normal n (A to B), the two surface points and R*.
+  void fill_geometry(const Vec3 &n, const Vec3 &point_a, const Vec3 &point_b, double overlap,
+                     double radius, ContactGeometry &g)
   {
     g.normal = n;
     g.overlap = overlap;
     g.point_a = point_a;
     g.point_b = point_b;
     g.point = 0.5 * (point_a + point_b);
-    g.effective_radius = effective_radius(a, b, n);
+    g.effective_radius = radius;
   }
 
-  // ... at the support points of n, where the overlap is d(n)
+  // ... at the support points of n, where the overlap is d(n); R* from the support
+  // half-widths h = sqrt(n^T M n) the evaluation already has
   void fill_geometry(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n, const GapEval &ev,
                      ContactGeometry &g)
   {
-    fill_geometry(a, b, n, a.center + ev.ua, b.center - ev.ub, ev.d, g);
+    fill_geometry(n, a.center + ev.ua, b.center - ev.ub, ev.d,
+                  effective_radius(gaussian_radius_of_nmn(a, ev.ha * ev.ha),
+                                   gaussian_radius_of_nmn(b, ev.hb * ev.hb)),
+                  g);
   }
 
   // The fast mode's test: the angle between dir and the average of the unit surface gradients
@@ -72,16 +76,20 @@ ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b)
 ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
                                   const ContactSettings &settings, const Vec3 *warm_normal)
 {
-  // one result object returned on every path, so that it is built in the caller's place
-  ContactGeometry g;
   if (!valid(a) || !valid(b)) {
+    ContactGeometry g;
     g.status = Status::Degenerate;
     return g;
   }
-  if (a.sphere && b.sphere) {
-    g = sphere_contact(a, b);
-    return g;
-  }
+  if (a.sphere && b.sphere) return sphere_contact(a, b);
+  return valid_ellipsoid_contact(a, b, settings, warm_normal);
+}
+
+ContactGeometry valid_ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
+                                        const ContactSettings &settings, const Vec3 *warm_normal)
+{
+  // one result object returned on every path, so that it is built in the caller's place
+  ContactGeometry g;
   const Vec3 dc = b.center - a.center;
   const double tol = settings.tolerance > 0.0 ? settings.tolerance : 1e-12;
   const int max_iter = std::max(settings.max_iterations, 1);
@@ -120,7 +128,7 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
       overlap = ev.d;
     }
     if (gradients_agree(a, b, 0.5 * (xa + xb), n0, settings.correction_angle)) {
-      fill_geometry(a, b, n0, xa, xb, overlap, g);
+      fill_geometry(n0, xa, xb, overlap, effective_radius(a, b, n0), g);
       g.iterations = it0;
       g.corrected = false;
       g.status = g.overlap > 0.0 ? Status::Overlapping : Status::Separated;

@@ -68,6 +68,11 @@ ContactGeometry ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
                                   const ContactSettings &settings,
                                   const Vec3 *warm_normal = nullptr);
 
+// ellipsoid_contact for two bodies that valid() accepts and that are not both spheres, without
+// those checks, for callers that made them (evaluate_pair).
+ContactGeometry valid_ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
+                                        const ContactSettings &settings, const Vec3 *warm_normal);
+
 // Closed-form sphere-sphere contact (used automatically when both are spheres).
 ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b);
 

@@ -56,19 +56,35 @@ class PairCache {
   // true while the cache keeps a plane or a normal (engines keep such pairs' history)
   bool in_use() const { return v[STATE] != 0.0; }
   Vec3 normal() const { return Vec3(v[NORMAL], v[NORMAL + 1], v[NORMAL + 2]); }
-  // the cached normal when there is one and it is plausibly unit (false otherwise)
+  // the cached normal when there is one and it is plausibly unit, 1/2 < |n| < 2 (false
+  // otherwise); one test of |n|^2, which any NaN or infinite component fails
   bool usable_normal(Vec3 &n) const
   {
     n = normal();
-    return state() != State::Empty && finite3(n) && n.squaredNorm() > 0.25;
+    const double n2 = n.squaredNorm();
+    return state() != State::Empty && n2 > 0.25 && n2 < 4.0;
   }
-  // the cached plane, for the current centre c_A and dc = c_B - c_A
+  // the cached plane in absolute terms {n.x = offset}, for the current centre c_A and
+  // dc = c_B - c_A (the pipeline tests it with plane_separates() below; the tests check that
+  // both agree with the Wang test's plane_separates())
   SeparatingPlane plane(const Vec3 &ca, const Vec3 &dc) const
   {
     SeparatingPlane pl;
     pl.normal = normal();
     pl.offset = pl.normal.dot(ca + (0.5 + v[PLANE_U]) * dc);
     return pl;
+  }
+
+  // plane_separates() for the cached plane (normal n), in the centres' own terms: with
+  // nd = n.dc it holds A below when h_A(n) < (1/2 + u) nd and B above when h_B(-n) < (1/2 - u) nd;
+  // no absolute offset is formed. Any NaN or an infinite n.dc (a centre at infinity, which
+  // would pass both comparisons) makes it false.
+  bool plane_separates(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc) const
+  {
+    const Vec3 n = normal();
+    const double nd = n.dot(dc), u = v[PLANE_U];
+    return std::isfinite(nd) && std::sqrt(n.dot(a.inverse_form * n)) < (0.5 + u) * nd &&
+        std::sqrt(n.dot(b.inverse_form * n)) < (0.5 - u) * nd;
   }
 
   // the plane {n.x = offset} as (n, u); a plane that does not cross the centre line (n.dc <= 0)

@@ -14,6 +14,18 @@ void PipelineCounters::add(const PipelineCounters &o)
   for (const CounterField &c : PIPELINE_COUNTERS) this->*c.member += o.*c.member;
 }
 
+namespace {
+  // The result of a shortcut that decides the pair without the iteration.
+  ContactGeometry decided(Status status, const Vec3 &normal = Vec3::Zero(), double overlap = 0.0)
+  {
+    ContactGeometry g;
+    g.status = status;
+    g.normal = normal;
+    g.overlap = overlap;
+    return g;
+  }
+}    // namespace
+
 ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
                               const PipelineSettings &settings, double *cache,
                               PipelineCounters &counters)
@@ -21,34 +33,29 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   const BoundingTest bounds = bounding_test(a, b);
   const Vec3 &dc = bounds.dc;
   const double dist = bounds.dist, reach = bounds.reach;
-  ContactGeometry g;
-  // non-finite input falls through to the validity check
-  if (reject_apart(bounds, cache, counters)) {
-    g.status = Status::Separated;
-    g.normal = dc / dist;
-    g.overlap = reach - dist;    // minus a lower bound of the distance
-    return g;
-  }
+  // Each shortcut returns its own result; the iteration's is built in the caller's place (the
+  // one named result below, returned on every path after it) instead of copied there.
+  // Non-finite input falls through to the validity check; the overlap of a bounding reject is
+  // minus a lower bound of the distance.
+  if (reject_apart(bounds, cache, counters))
+    return decided(Status::Separated, dc / dist, reach - dist);
   ++counters.pairs;
   PairCache history(cache);
   const PairCache::State state = history.state();
   Vec3 cached_n;
   const bool have_n = history.usable_normal(cached_n);
   if (state == PairCache::State::Plane && have_n && settings.use_planes) {
-    const SeparatingPlane pl = history.plane(a.center, dc);
-    // any NaN makes the test false, so invalid input cannot hit here
-    if (plane_separates(pl, a, b)) {
+    // any NaN or an infinite n.dc makes the test false, so invalid input cannot hit here
+    if (history.plane_separates(a, b, dc)) {
       ++counters.plane_hits;
-      g.status = Status::Separated;
-      g.normal = cached_n;
-      return g;
+      return decided(Status::Separated, cached_n);
     }
   }
-  if (!valid(a) || !valid(b) || !std::isfinite(dist)) {
+  // valid(a) && valid(b) without their centre tests: a finite |c_B - c_A| has finite centres
+  if (!a.finite || !b.finite || !std::isfinite(dist)) {
     ++counters.degenerate;
     history.clear();
-    g.status = Status::Degenerate;
-    return g;
+    return decided(Status::Degenerate);
   }
   // A pair in contact at the previous evaluation goes straight to the iteration, warm-started
   // from its own last normal: the sign of min d(n) decides separation exactly, and the
@@ -61,25 +68,22 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
     if (ws == Status::Degenerate) {
       ++counters.degenerate;
       history.clear();
-      g.status = Status::Degenerate;
-      return g;
+      return decided(Status::Degenerate);
     }
     if (ws == Status::Separated) {
       SeparatingPlane pl;
       if (build_separating_plane(a, b, pl, have_n ? &cached_n : nullptr)) {
         ++counters.wang_separated;
         history.store_plane(pl.normal, pl.offset, a.center, dc);
-        g.status = Status::Separated;
-        g.normal = pl.normal;
-        return g;
+        return decided(Status::Separated, pl.normal);
       }
       // no plane to round-off: fall through to the exact iteration
     }
   }
-  // two valid spheres: ellipsoid_contact's closed form, without its checks made above
-  g = a.sphere && b.sphere
+  // ellipsoid_contact without its validity checks, made above (two spheres: its closed form)
+  ContactGeometry g = a.sphere && b.sphere
       ? sphere_contact(a, b)
-      : ellipsoid_contact(a, b, settings.contact, have_n ? &cached_n : nullptr);
+      : valid_ellipsoid_contact(a, b, settings.contact, have_n ? &cached_n : nullptr);
   counters.iterations += g.iterations;
   if (g.corrected) ++counters.corrections;
   if (g.status == Status::Degenerate) {

@@ -108,11 +108,15 @@ inline double support(const Mat3 &m, const Vec3 &n)
 }
 
 // Gaussian-curvature radius sqrt(R1 R2) of the surface where its outer unit normal is n:
-// abc / (n^T M n), from the Gaussian curvature K = (n^T M n)^2 / (abc)^2.
+// abc / (n^T M n), from the Gaussian curvature K = (n^T M n)^2 / (abc)^2. The first form takes
+// n^T M n, for callers that have it (the square of the support half-width).
+inline double gaussian_radius_of_nmn(const Ellipsoid &e, double nmn)
+{
+  return e.semi_axes[0] * e.semi_axes[1] * e.semi_axes[2] / nmn;
+}
 inline double gaussian_radius(const Ellipsoid &e, const Vec3 &unit_normal)
 {
-  const double nmn = unit_normal.dot(e.inverse_form * unit_normal);
-  return e.semi_axes[0] * e.semi_axes[1] * e.semi_axes[2] / nmn;
+  return gaussian_radius_of_nmn(e, unit_normal.dot(e.inverse_form * unit_normal));
 }
 
 // The force laws' R* = R_A R_B / (R_A + R_B) of two surface radii.

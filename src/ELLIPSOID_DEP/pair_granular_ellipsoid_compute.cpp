@@ -94,30 +94,35 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   int **firsttouch = fix_history->firstflag;
+  // loop invariants in locals: the calls in the loop would have them reloaded for every pair
+  const EllipsoidState *const state = states.data();
+  const int stride = size_history;
+  const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     int *jlist = firstneigh[i];
     int *touch = firsttouch[i];
     const int jnum = numneigh[i];
+    double *const first_history = pair_history(i, 0);    // jj's at stride * jj, as pair_history
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      double *history = pair_history(i, jj);
+      double *history = first_history + stride * jj;
       PairCache cache(history);
       // most neighbours are beyond the bounding spheres: no evaluation to set up for them
-      if (reject_apart(bounding_test(states[i].shape, states[j].shape), history, counters)) {
+      if (reject_apart(bounding_test(state[i].shape, state[j].shape), history, counters)) {
         touch[jj] = 0;
-        if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
+        if (tangential_slots) cache.clear_tangential();
         continue;
       }
 
       const ContactGeometry geometry =
-          evaluate_pair(states[i].shape, states[j].shape, pipeline, history, counters);
+          evaluate_pair(state[i].shape, state[j].shape, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
       touch[jj] = cache.in_use() ? 1 : 0;
       if (!in_contact(geometry)) {
-        if (size_history > PairCache::PIPELINE_SIZE) cache.clear_tangential();
+        if (tangential_slots) cache.clear_tangential();
         continue;
       }
 

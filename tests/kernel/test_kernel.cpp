@@ -138,6 +138,9 @@ TEST(Contact, AccuracyUpToOnePercent)
     // the support points lie on the common normal
     EXPECT_LT((g.point_a - g.point_b - g.overlap * g.normal).norm(),
               1e-10 * c.size + 1e-8 * g.overlap);
+    // R* (from the iteration's support half-widths) is the curvature formula's at the normal
+    const double rstar = effective_radius(c.a, c.b, g.normal);
+    EXPECT_NEAR(g.effective_radius, rstar, 1e-13 * rstar);
   }
   std::printf("[accuracy <=1%%] worst normal angle %.3e rad, worst rel overlap err (>=1e-5) "
               "%.3e, worst abs overlap err / size %.3e\n",
@@ -420,6 +423,7 @@ TEST(Pipeline, CachedPlaneAndSwap)
     const Vec3 dc = c.b.center - c.a.center;
     const SeparatingPlane pl = history.plane(c.a.center, dc);
     EXPECT_TRUE(plane_separates(pl, c.a, c.b));
+    EXPECT_TRUE(history.plane_separates(c.a, c.b, dc));    // the same test relative to the centres
     // second call with the same positions: the cached plane hits
     g = evaluate_pair(c.a, c.b, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Separated);
@@ -434,6 +438,7 @@ TEST(Pipeline, CachedPlaneAndSwap)
     EXPECT_EQ(cnt.plane_hits, 2);
     // move B into contact: plane fails, contact computed warm, state 2
     const Ellipsoid b2 = place_b(c.a, c.b.rotation, c.b.semi_axes, c.n, 1e-3 * c.size);
+    EXPECT_FALSE(history.plane_separates(c.a, b2, b2.center - c.a.center));
     g = evaluate_pair(c.a, b2, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Overlapping);
     EXPECT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Contact));
@@ -495,6 +500,37 @@ TEST(Degenerate, NonFiniteAndZeroAxis)
   EXPECT_EQ(g.status, Status::Degenerate);
   EXPECT_EQ(cnt.degenerate, 1);
   EXPECT_EQ(cache[PairCache::STATE], 0.0);
+  // a centre at infinity along a cached plane's normal (n.dc = +inf passes both of the plane
+  // test's comparisons) is degenerate too, not a plane hit
+  const Ellipsoid thin = make_ellipsoid(Vec3(0, 0, 0), q, Vec3(0.5, 1, 1));
+  auto sep = evaluate_pair(thin, make_ellipsoid(Vec3(1.8, 0, 0), q, Vec3(0.5, 1, 1)), ps, cache,
+                           cnt);
+  ASSERT_EQ(sep.status, Status::Separated);
+  ASSERT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
+  sep = evaluate_pair(thin, make_ellipsoid(Vec3(INFINITY, 0, 0), q, Vec3(0.5, 1, 1)), ps, cache,
+                      cnt);
+  EXPECT_EQ(sep.status, Status::Degenerate);
+  EXPECT_EQ(cnt.degenerate, 2);
+  EXPECT_EQ(cnt.plane_hits, 0);
+}
+
+// A cached normal is used only when it is plausibly unit: 1/2 < |n| < 2, finite.
+TEST(Pipeline, UsableNormal)
+{
+  double cache[PairCache::PIPELINE_SIZE];
+  const PairCache history(cache);
+  Vec3 n;
+  for (const Vec3 &stored : {Vec3(1, 0, 0), Vec3(0, 0.6, 0), Vec3(0, 0, 1.9)}) {
+    PairCache(cache).store_contact(stored);
+    EXPECT_TRUE(history.usable_normal(n)) << stored.transpose();
+  }
+  for (const Vec3 &stored : {Vec3(0.4, 0, 0), Vec3(3, 0, 0), Vec3(1e200, 0, 0),
+                             Vec3(INFINITY, 0, 0), Vec3(NAN, 0, 0), Vec3(1, NAN, 0)}) {
+    PairCache(cache).store_contact(stored);
+    EXPECT_FALSE(history.usable_normal(n)) << stored.transpose();
+  }
+  PairCache(cache).clear();
+  EXPECT_FALSE(history.usable_normal(n));
 }
 
 // ---------------------------------------------------------------------------
