@@ -34,8 +34,8 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
-    freeze_group_bit(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
-    damping_time(0.0)
+    freeze_group_bit(0), candidates_build(-1), set_aside(0), restart_history_size(0),
+    impact_velocity(0.0), contact_time(0.0), damping_time(0.0)
 {
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default
   // transfer, which negates every value when i and j swap, exactly the PairCache swap rule.
@@ -383,6 +383,7 @@ double PairGranularEllipsoid::memory_usage()
 {
   return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
                              state_keys.capacity() * sizeof(ShapeKey) +
-                             ghost_owner.capacity() * sizeof(int)) +
+                             ghost_owner.capacity() * sizeof(int) +
+                             (candidate_jj.capacity() + candidate_first.capacity()) * sizeof(int)) +
       contacts.memory_usage();
 }

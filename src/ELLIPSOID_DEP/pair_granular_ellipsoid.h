@@ -10,8 +10,8 @@
 #include "pair.h"
 
 #include "ellipsoid_force_law.h"
-#include "granular_contact_time.h"
 #include "ellipsoid_kernel.h"
+#include "granular_contact_time.h"
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
 
@@ -77,6 +77,19 @@ class PairGranularEllipsoid : public Pair {
   std::unordered_map<tagint, int> owned_index;    // scratch of find_ghost_owners()
   void find_ghost_owners();
   void update_states();
+
+  // The neighbours each force evaluation visits: at a neighbour list build, those whose
+  // bounding spheres are within the skin (LAMMPS's size lists for spheres: radsum + skin);
+  // the others are apart until the next build, when no atom moves half the skin in between.
+  // candidate_jj[candidate_first[ii] ..] are i's (neighbour indices jj); built at build
+  // number candidates_build (Neighbor::ncalls); set_aside counts the pairs left out.
+  std::vector<int> candidate_jj, candidate_first;
+  bigint candidates_build;
+  bigint set_aside;
+  bool builds_keep_skin() const;
+  void find_candidates();
+  bool candidates_stale() const;
+  void all_candidates();
 
   // the force law on the contact geometry of atoms i and j (in contact: see in_contact())
   EllipsoidDep::ContactForce pair_force(int i, int j, int law, double *history,

@@ -73,6 +73,74 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
   return &fix_history->firstvalue[i][size_history * jj];
 }
 
+namespace {
+// A pair whose bounding spheres are apart (true): its cache and tangential history cleared,
+// not kept at the next list build, counted as a bounding reject. The flag and the slot test
+// come as values: stores through touch and history could otherwise alias them.
+inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch,
+                            bool tangential_slots, PipelineCounters &counters)
+{
+  if (!reject_apart(t, history, counters)) return false;
+  touch = 0;
+  if (tangential_slots) PairCache(history).clear_tangential();
+  return true;
+}
+}    // namespace
+
+/* ----------------------------------------------------------------------
+   at a neighbour list build: the neighbours within the skin of their bounding spheres are
+   the candidates, the others are forgotten and set aside (LAMMPS's size lists keep the pairs
+   of spheres within radsum + skin); builds_keep_skin() says they stay apart until the next
+------------------------------------------------------------------------- */
+
+void PairGranularEllipsoid::find_candidates()
+{
+  const int inum = list->inum;
+  const double skin = neighbor->skin;
+  const EllipsoidState *const state = states.data();
+  const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
+  candidate_jj.clear();
+  candidate_first.assign(inum + 1, 0);
+  set_aside = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *jlist = list->firstneigh[i];
+    int *touch = fix_history->firstflag[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const BoundingTest t = bounding_test(state[i].shape, state[jlist[jj] & NEIGHMASK].shape);
+      if (t.dist > t.reach + skin &&
+          forget_if_apart(t, pair_history(i, jj), touch[jj], tangential_slots, counters))
+        ++set_aside;
+      else
+        candidate_jj.push_back(jj);
+    }
+    candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
+  }
+  candidates_build = neighbor->lastcall;
+}
+
+// the list was built since the candidates were found: it is built at the step of a force
+// evaluation (ago 0; Neighbor::ncalls restarts at every run) or at another step than theirs
+bool PairGranularEllipsoid::candidates_stale() const
+{
+  return neighbor->ago == 0 || neighbor->lastcall != candidates_build ||
+      static_cast<int>(candidate_first.size()) != list->inum + 1;
+}
+
+// every neighbour is a candidate (the builds do not keep the skin)
+void PairGranularEllipsoid::all_candidates()
+{
+  const int inum = list->inum;
+  candidate_jj.clear();
+  candidate_first.assign(inum + 1, 0);
+  for (int ii = 0; ii < inum; ii++) {
+    for (int jj = 0; jj < list->numneigh[list->ilist[ii]]; jj++) candidate_jj.push_back(jj);
+    candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
+  }
+  set_aside = 0;
+  candidates_build = -1;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::compute(int eflag, int vflag)
@@ -91,7 +159,6 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
 
   const int inum = list->inum;
   int *ilist = list->ilist;
-  int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   int **firsttouch = fix_history->firstflag;
   // loop invariants in locals: the calls in the loop would have them reloaded for every pair
@@ -99,27 +166,37 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   const int stride = size_history;
   const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
 
+  // the pairs set aside at a build are counted there, at the other steps below
+  bool aside_counted = true;
+  if (!builds_keep_skin())
+    all_candidates();
+  else if (candidates_stale())
+    find_candidates();
+  else
+    aside_counted = false;
+  const int *const candidates = candidate_jj.data();
+
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     int *jlist = firstneigh[i];
     int *touch = firsttouch[i];
-    const int jnum = numneigh[i];
     double *const first_history = pair_history(i, 0);    // jj's at stride * jj, as pair_history
 
-    for (int jj = 0; jj < jnum; jj++) {
+    const int *const first_candidate = candidates + candidate_first[ii];
+    const int ncandidates = candidate_first[ii + 1] - candidate_first[ii];
+    for (int k = 0; k < ncandidates; k++) {
+      const int jj = first_candidate[k];
       const int j = jlist[jj] & NEIGHMASK;
       double *history = first_history + stride * jj;
-      PairCache cache(history);
       // most neighbours are beyond the bounding spheres: no evaluation to set up for them
-      if (reject_apart(bounding_test(state[i].shape, state[j].shape), history, counters)) {
-        touch[jj] = 0;
-        if (tangential_slots) cache.clear_tangential();
+      if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
+                          tangential_slots, counters))
         continue;
-      }
 
       const ContactGeometry geometry =
           evaluate_pair(state[i].shape, state[j].shape, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
+      PairCache cache(history);
       touch[jj] = cache.in_use() ? 1 : 0;
       if (!in_contact(geometry)) {
         if (tangential_slots) cache.clear_tangential();
@@ -159,7 +236,23 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       }
     }
   }
+  if (!aside_counted) {
+    counters.pairs += set_aside;
+    counters.bounding_rejects += set_aside;
+  }
   local_counters(pvector);
+}
+
+/* ----------------------------------------------------------------------
+   the neighbour list builds keep every pair within the skin of its last build: a build
+   whenever an atom has moved half the skin (neigh_modify every 1 delay 0 check yes once no,
+   LAMMPS's default); otherwise every neighbour is visited at every step
+------------------------------------------------------------------------- */
+
+bool PairGranularEllipsoid::builds_keep_skin() const
+{
+  return neighbor->every == 1 && neighbor->delay == 0 && neighbor->dist_check == 1 &&
+      neighbor->build_once == 0;
 }
 
 /* ----------------------------------------------------------------------
