@@ -188,6 +188,13 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       const int jj = first_candidate[k];
       const int j = jlist[jj] & NEIGHMASK;
       double *history = first_history + stride * jj;
+      // the candidates' history rows and states are read with gaps, which the hardware
+      // prefetcher does not follow as it followed the sweep over every neighbour
+      if (k + 1 < ncandidates) {
+        const int next = first_candidate[k + 1];
+        __builtin_prefetch(first_history + stride * next);
+        __builtin_prefetch(&state[jlist[next] & NEIGHMASK]);
+      }
       // most neighbours are beyond the bounding spheres: no evaluation to set up for them
       if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
                           tangential_slots, counters))
