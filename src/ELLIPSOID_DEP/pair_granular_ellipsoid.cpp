@@ -34,7 +34,7 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
-    freeze_group_bit(0), candidates_build(-1), set_aside(0), restart_history_size(0),
+    freeze_group_bit(0), candidates_step(-1), set_aside(0), restart_history_size(0),
     impact_velocity(0.0), contact_time(0.0), damping_time(0.0)
 {
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default

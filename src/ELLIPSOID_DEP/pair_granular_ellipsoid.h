@@ -78,13 +78,13 @@ class PairGranularEllipsoid : public Pair {
   void find_ghost_owners();
   void update_states();
 
-  // The neighbours each force evaluation visits: at a neighbour list build, those whose
+  // The neighbours each force evaluation visits: after a neighbour list build, those whose
   // bounding spheres are within the skin (LAMMPS's size lists for spheres: radsum + skin);
   // the others are apart until the next build, when no atom moves half the skin in between.
-  // candidate_jj[candidate_first[ii] ..] are i's (neighbour indices jj); built at build
-  // number candidates_build (Neighbor::ncalls); set_aside counts the pairs left out.
+  // candidate_jj[candidate_first[ii] ..] are i's (neighbour indices jj), found for the list
+  // built at step candidates_step (Neighbor::lastcall); set_aside counts the pairs left out.
   std::vector<int> candidate_jj, candidate_first;
-  bigint candidates_build;
+  bigint candidates_step;
   bigint set_aside;
   bool builds_keep_skin() const;
   void find_candidates();

@@ -75,8 +75,8 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
 
 namespace {
 // A pair whose bounding spheres are apart (true): its cache and tangential history cleared,
-// not kept at the next list build, counted as a bounding reject. The flag and the slot test
-// come as values: stores through touch and history could otherwise alias them.
+// not kept at the next list build, counted as a bounding reject. tangential_slots is a
+// local of the caller's: a member would be reloaded after every store through touch.
 inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch,
                             bool tangential_slots, PipelineCounters &counters)
 {
@@ -88,15 +88,18 @@ inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch,
 }    // namespace
 
 /* ----------------------------------------------------------------------
-   at a neighbour list build: the neighbours within the skin of their bounding spheres are
-   the candidates, the others are forgotten and set aside (LAMMPS's size lists keep the pairs
-   of spheres within radsum + skin); builds_keep_skin() says they stay apart until the next
+   at the first force evaluation after a neighbour list build (its positions): the neighbours
+   within the skin of their bounding spheres are the candidates, the others are forgotten and
+   set aside (LAMMPS's size lists keep the pairs of spheres within radsum + skin);
+   builds_keep_skin() says they stay apart until the next build. The rejects this makes are
+   counted here; at the other steps compute() counts the pairs set aside.
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::find_candidates()
 {
   const int inum = list->inum;
-  const double skin = neighbor->skin;
+  // a margin over the rounding of the distances and of LAMMPS's displacement test
+  const double skin = neighbor->skin * (1.0 + 1e-10);
   const EllipsoidState *const state = states.data();
   const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
   candidate_jj.clear();
@@ -108,26 +111,21 @@ void PairGranularEllipsoid::find_candidates()
     int *touch = fix_history->firstflag[i];
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const BoundingTest t = bounding_test(state[i].shape, state[jlist[jj] & NEIGHMASK].shape);
-      if (t.dist > t.reach + skin &&
-          forget_if_apart(t, pair_history(i, jj), touch[jj], tangential_slots, counters))
+      const bool beyond_skin = t.dist > t.reach + skin;
+      if (beyond_skin &&
+          forget_if_apart(t, pair_history(i, jj), touch[jj], tangential_slots, counters)) {
         ++set_aside;
-      else
-        candidate_jj.push_back(jj);
+        continue;
+      }
+      candidate_jj.push_back(jj);
     }
     candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
   }
-  candidates_build = neighbor->lastcall;
+  candidates_step = neighbor->lastcall;
 }
 
-// the list was built since the candidates were found: it is built at the step of a force
-// evaluation (ago 0; Neighbor::ncalls restarts at every run) or at another step than theirs
-bool PairGranularEllipsoid::candidates_stale() const
-{
-  return neighbor->ago == 0 || neighbor->lastcall != candidates_build ||
-      static_cast<int>(candidate_first.size()) != list->inum + 1;
-}
-
-// every neighbour is a candidate (the builds do not keep the skin)
+// every neighbour is a candidate: the builds do not keep the skin, or the list changed
+// since the first evaluation after its build (positions have moved since)
 void PairGranularEllipsoid::all_candidates()
 {
   const int inum = list->inum;
@@ -138,7 +136,17 @@ void PairGranularEllipsoid::all_candidates()
     candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
   }
   set_aside = 0;
-  candidates_build = -1;
+  candidates_step = neighbor->lastcall;
+}
+
+// the candidates are not those of the current list: it was built at this step (ago 0;
+// Neighbor::ncalls restarts at every run, so it cannot tell), at another step than theirs,
+// or holds other atoms; or they set pairs aside under settings that no longer allow it
+bool PairGranularEllipsoid::candidates_stale() const
+{
+  return neighbor->ago == 0 || neighbor->lastcall != candidates_step ||
+      static_cast<int>(candidate_first.size()) != list->inum + 1 ||
+      (set_aside > 0 && !builds_keep_skin());
 }
 
 /* ---------------------------------------------------------------------- */
@@ -166,14 +174,11 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   const int stride = size_history;
   const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
 
-  // the pairs set aside at a build are counted there, at the other steps below
-  bool aside_counted = true;
-  if (!builds_keep_skin())
-    all_candidates();
-  else if (candidates_stale())
+  const bool refresh = candidates_stale();
+  if (refresh && neighbor->ago == 0 && builds_keep_skin())
     find_candidates();
-  else
-    aside_counted = false;
+  else if (refresh)
+    all_candidates();
   const int *const candidates = candidate_jj.data();
 
   for (int ii = 0; ii < inum; ii++) {
@@ -190,12 +195,14 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       double *history = first_history + stride * jj;
       // the candidates' history rows and states are read with gaps, which the hardware
       // prefetcher does not follow as it followed the sweep over every neighbour
+#if defined(__GNUC__)
       if (k + 1 < ncandidates) {
         const int next = first_candidate[k + 1];
         __builtin_prefetch(first_history + stride * next);
         __builtin_prefetch(&state[jlist[next] & NEIGHMASK]);
       }
-      // most neighbours are beyond the bounding spheres: no evaluation to set up for them
+#endif
+      // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
       if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
                           tangential_slots, counters))
         continue;
@@ -243,7 +250,8 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       }
     }
   }
-  if (!aside_counted) {
+  // find_candidates() counted its rejects; the pairs it set aside are rejects at every step
+  if (!refresh) {
     counters.pairs += set_aside;
     counters.bounding_rejects += set_aside;
   }
@@ -258,8 +266,10 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
 
 bool PairGranularEllipsoid::builds_keep_skin() const
 {
+  // r-RESPA builds before its inner levels move the atoms, so the first evaluation after a
+  // build does not see the build's positions
   return neighbor->every == 1 && neighbor->delay == 0 && neighbor->dist_check == 1 &&
-      neighbor->build_once == 0;
+      neighbor->build_once == 0 && !utils::strmatch(update->integrate_style, "^respa");
 }
 
 /* ----------------------------------------------------------------------

@@ -16,50 +16,55 @@ import numpy as np
 
 from conftest import new_lammps
 
-RADII = (0.15, 0.3, 0.6)    # one type per radius: the list's cutoff is set by the largest
+# one atom type (a type per radius would give each type pair its own cutoff, and so a list
+# without the far pairs): the list's cutoff is set by the largest radius
+RADII = (0.15, 0.3, 0.6)
 E, NU, REST = 1.0e5, 0.3, 0.8
 DENSITY = 1.0
 LAMMPS_COEFF = f"hertz/material {E} {REST} {NU} damping coeff_restitution " \
     "tangential linear_nohistory 0 0"
 OUR_COEFF = f"hertz/material {E} {NU} {REST}"
 BOX = 5.0
+COUNTERS = ("pairs", "plane_hits", "wang_calls", "contacts", "iterations", "corrections",
+            "not_converged", "bounding_rejects", "degenerate", "continued", "wang_separated")
 
 
 def place(rng, n, box, closest):
-    """n spheres of the three radii (types 1, 2, 3 in turn) at random places in a periodic
+    """n spheres of the three radii (sizes 1, 2, 3 in turn) at random places in a periodic
     box, no two centres closer than closest * (r_i + r_j) in any periodic image."""
-    pos, types = [], []
+    pos, sizes = [], []
     while len(pos) < n:
         p = rng.uniform(0.0, box, 3)
         t = 1 + len(pos) % len(RADII)
         if all(np.linalg.norm((p - q) - box * np.round((p - q) / box))
-               > closest * (RADII[t - 1] + RADII[s - 1]) for q, s in zip(pos, types)):
+               > closest * (RADII[t - 1] + RADII[s - 1]) for q, s in zip(pos, sizes)):
             pos.append(p)
-            types.append(t)
-    return np.array(pos), types
+            sizes.append(t)
+    return np.array(pos), sizes
 
 
 def touching_tree(rng, n, box):
-    """n spheres of the three radii (types in turn), each overlapping a random earlier one
+    """n spheres of the three radii (sizes in turn), each overlapping a random earlier one
     by 2 % of their radius sum, none closer than 0.95 (r_i + r_j) to any other; away from
     the box's faces."""
-    pos, types = [np.full(3, 0.5 * box)], [1]
+    pos, sizes = [np.full(3, 0.5 * box)], [1]
     while len(pos) < n:
         t = 1 + len(pos) % len(RADII)
         k = rng.integers(len(pos))
         u = rng.normal(size=3)
-        p = pos[k] + 0.98 * (RADII[t - 1] + RADII[types[k] - 1]) * u / np.linalg.norm(u)
+        p = pos[k] + 0.98 * (RADII[t - 1] + RADII[sizes[k] - 1]) * u / np.linalg.norm(u)
         if np.all(np.abs(p - 0.5 * box) < 0.5 * box - 1.0) and all(
                 np.linalg.norm(p - q) > 0.95 * (RADII[t - 1] + RADII[s - 1])
-                for q, s in zip(pos, types)):
+                for q, s in zip(pos, sizes)):
             pos.append(p)
-            types.append(t)
-    return np.array(pos), types
+            sizes.append(t)
+    return np.array(pos), sizes
 
 
-def spheres(style, pos, types, vel, box):
+def spheres(style, pos, sizes, vel, box, neigh="every 1 delay 0 check yes"):
     """The spheres with pair granular and nve/sphere (style 'sphere') or this package's
-    pair and integrator (style 'ellipsoid'), the neighbour settings that keep the skin."""
+    pair and integrator (style 'ellipsoid'); by default the neighbour settings that keep the
+    skin."""
     lmp = new_lammps()
     lmp.commands_string(f"""
         units lj
@@ -68,13 +73,14 @@ def spheres(style, pos, types, vel, box):
         comm_modify vel yes
         boundary p p p
         region box block 0 {box} 0 {box} 0 {box}
-        create_box {len(RADII)} box
+        create_box 1 box
         """)
-    for p, t in zip(pos, types):
-        lmp.command(f"create_atoms {t} single {p[0]} {p[1]} {p[2]}")
-    for t, r in enumerate(RADII, start=1):
+    for p in pos:
+        lmp.command(f"create_atoms 1 single {p[0]} {p[1]} {p[2]}")
+    for tag, t in enumerate(sizes, start=1):
+        r = RADII[t - 1]
         size = f"diameter {2 * r}" if style == "sphere" else f"shape {2 * r} {2 * r} {2 * r}"
-        lmp.command(f"set type {t} {size}")
+        lmp.command(f"set atom {tag} {size}")
     lmp.command(f"set type * density {DENSITY}")
     v = lmp.numpy.extract_atom("v")
     for k, tag in enumerate(ids_of(lmp)):
@@ -86,7 +92,7 @@ def spheres(style, pos, types, vel, box):
         pair_coeff * * {coeff}
         fix integrate all {nve}
         neighbor 0.1 bin
-        neigh_modify every 1 delay 0 check yes
+        neigh_modify {neigh}
         """)
     return lmp
 
@@ -102,33 +108,31 @@ def by_id(lmp, name):
 
 def gas():
     rng = np.random.default_rng(5)
-    pos, types = place(rng, 45, BOX, 1.05)
-    return pos, types, rng.normal(0.0, 1.0, (len(types), 3))
+    pos, sizes = place(rng, 45, BOX, 1.05)
+    return pos, sizes, rng.normal(0.0, 1.0, (len(sizes), 3))
 
 
-def run_gas(style, steps=1500):
+def run_gas(style, steps=1500, neigh="every 1 delay 0 check yes"):
     """The gas after `steps` steps: positions and velocities by atom ID, and (ours) the
-    pair's contacts counter."""
-    lmp = spheres(style, *gas(), BOX)
+    pair's counters."""
+    lmp = spheres(style, *gas(), BOX, neigh)
     lmp.commands_string(f"""
         timestep 2e-4
         run {steps}
         """)
     x, v = by_id(lmp, "x"), by_id(lmp, "v")
-    contacts = None
-    if style != "sphere":
-        lmp.command("compute p all pair granular/ellipsoid")
-        lmp.command("run 0")
-        contacts = lmp.extract_compute("p", 0, 1)[3]    # the contacts counter
+    counters = {name: lmp.extract_pair("counters/" + name) for name in COUNTERS} \
+        if style != "sphere" else None
     lmp.close()
-    return x, v, contacts
+    return x, v, counters
 
 
 def test_polydisperse_gas_moves_as_pair_granular():
     x_ref, v_ref, _ = run_gas("sphere")
-    x, v, contacts = run_gas("ellipsoid")
-    # collisions happened (between builds) and the velocities changed
-    assert contacts is not None and contacts > 100
+    x, v, counters = run_gas("ellipsoid")
+    # collisions happened (between builds), most pairs were set aside, the velocities changed
+    assert counters["contacts"] > 100
+    assert counters["bounding_rejects"] > 0.8 * counters["pairs"]
     assert np.abs(v_ref - gas()[2]).max() > 0.1
     dx = x - x_ref
     dx -= BOX * np.round(dx / BOX)    # the same place in another periodic image
@@ -136,15 +140,38 @@ def test_polydisperse_gas_moves_as_pair_granular():
     np.testing.assert_allclose(v, v_ref, rtol=0, atol=1e-8)
 
 
+def test_counters_as_if_every_neighbour_was_visited():
+    ours = run_gas("ellipsoid")[2]
+    # a build at every step, every neighbour visited: another list, so only the pairs past
+    # the bounding-sphere test compare, and those exactly
+    every_step = run_gas("ellipsoid", neigh="every 1 delay 0 check no")[2]
+    for name in COUNTERS:
+        if name not in ("pairs", "bounding_rejects"):
+            assert ours[name] == every_step[name], name
+    assert ours["pairs"] - ours["bounding_rejects"] == \
+        every_step["pairs"] - every_step["bounding_rejects"]
+    # at a step without a build every pair of the list is counted, the set-aside ones too
+    lmp = spheres("ellipsoid", *gas(), BOX)
+    lmp.commands_string("timestep 2e-4\nrun 300")
+    idx = lmp.find_pair_neighlist("granular/ellipsoid")
+    for _ in range(3):
+        before = lmp.extract_pair("counters/pairs")
+        lmp.command("run 1 pre no post no")
+        listed = sum(lmp.get_neighlist_element_neighbors(idx, k)[1]
+                     for k in range(lmp.get_neighlist_size(idx)))
+        assert lmp.extract_pair("counters/pairs") - before == listed
+    lmp.close()
+
+
 def cluster_forces(style, swap):
     """Forces on a dense cluster (many overlaps), evaluated by run 0; with swap, atoms 1 and
-    4, 7 and 10, ... (the same type) then trade places and a second run 0 at the same step
+    4, 7 and 10, ... (the same size) then trade places and a second run 0 at the same step
     evaluates them again: a new list at the same step and build count, whose neighbours are
     not the first list's."""
     rng = np.random.default_rng(8)
     box = 6.0
-    pos, types = touching_tree(rng, 24, box)
-    lmp = spheres(style, pos, types, np.zeros((len(types), 3)), box)
+    pos, sizes = touching_tree(rng, 24, box)
+    lmp = spheres(style, pos, sizes, np.zeros((len(sizes), 3)), box)
     # unsorted: sorting by place would give the traded atoms each other's local index, and so
     # the first list's layout again
     lmp.command("atom_modify sort 0 0.0")
@@ -152,7 +179,7 @@ def cluster_forces(style, swap):
     if swap:
         x = lmp.numpy.extract_atom("x")
         index = {int(tag): k for k, tag in enumerate(ids_of(lmp))}
-        for tag in range(1, len(types) - len(RADII) + 1, 2 * len(RADII)):
+        for tag in range(1, len(sizes) - len(RADII) + 1, 2 * len(RADII)):
             a, b = index[tag], index[tag + len(RADII)]
             x[a][:], x[b][:] = x[b].copy(), x[a].copy()
         lmp.command("run 0")
