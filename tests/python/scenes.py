@@ -54,6 +54,20 @@ fix w all wall/gran/ellipsoid {wall}
 """
 
 
+def particle_box(style, lo, hi, ntypes=1, boundary="p p p"):
+    """The opening of a granular input: lj units, the atom style, an atom map (for setting
+    values by ID), ghost velocities, and a cubic box [lo, hi]^3 of ntypes atom types."""
+    return f"""
+units lj
+atom_style {style}
+atom_modify map array
+comm_modify vel yes
+boundary {boundary}
+region box block {lo} {hi} {lo} {hi} {lo} {hi}
+create_box {ntypes} box
+"""
+
+
 def empty_pair_box(units="lj"):
     """A box of one ellipsoid with pair_style granular/ellipsoid defined and no coefficients:
     for what pair_coeff accepts and refuses."""

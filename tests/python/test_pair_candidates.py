@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+import scenes
 from conftest import new_lammps
 
 # one atom type (a type per radius would give each type pair its own cutoff, and so a list
@@ -66,15 +67,7 @@ def spheres(style, pos, sizes, vel, box, neigh="every 1 delay 0 check yes"):
     pair and integrator (style 'ellipsoid'); by default the neighbour settings that keep the
     skin."""
     lmp = new_lammps()
-    lmp.commands_string(f"""
-        units lj
-        atom_style {style}
-        atom_modify map array
-        comm_modify vel yes
-        boundary p p p
-        region box block 0 {box} 0 {box} 0 {box}
-        create_box 1 box
-        """)
+    lmp.commands_string(scenes.particle_box(style, 0, box))
     for p in pos:
         lmp.command(f"create_atoms 1 single {p[0]} {p[1]} {p[2]}")
     for tag, t in enumerate(sizes, start=1):
@@ -201,14 +194,7 @@ def approach(neigh_modify):
     between their bounding spheres), and a large one elsewhere that makes the list's cutoff
     long enough to hold them: their velocities along x after 600 steps."""
     lmp = new_lammps()
-    lmp.commands_string(f"""
-        units lj
-        atom_style ellipsoid
-        atom_modify map array
-        comm_modify vel yes
-        boundary p p p
-        region box block 0 12 0 12 0 12
-        create_box 1 box
+    lmp.commands_string(scenes.particle_box("ellipsoid", 0, 12) + f"""
         create_atoms 1 single 5.0 6.0 6.0
         create_atoms 1 single 5.9 6.0 6.0
         create_atoms 1 single 1.0 1.0 1.0

@@ -9,6 +9,7 @@ import json
 import numpy as np
 import pytest
 
+import scenes
 from conftest import new_lammps
 
 STEPS_PER_CONTACT = 50
@@ -22,14 +23,7 @@ def head_on_pair(ratio, seed, gap=0.05):
     semi = np.array([ratio * c, np.sqrt(ratio) * c, c])
     reach = semi.max()
     lmp = new_lammps()
-    lmp.commands_string(f"""
-        units lj
-        atom_style ellipsoid
-        atom_modify map array
-        comm_modify vel yes
-        boundary f f f
-        region box block -20 20 -20 20 -20 20
-        create_box 1 box
+    lmp.commands_string(scenes.particle_box("ellipsoid", -20, 20, boundary="f f f") + f"""
         create_atoms 1 single {-reach - gap} 0 0
         create_atoms 1 single {reach + gap} {0.3 * c} 0
         set type 1 mass 1.0

@@ -48,15 +48,7 @@ def cluster_forces(style, coeffs, seed=11):
     this package; coeffs are the pair_coeff lines."""
     pos, types, vel, omega = unlike_cluster(seed)
     lmp = new_lammps()
-    lmp.commands_string(f"""
-        units lj
-        atom_style {style}
-        atom_modify map array
-        comm_modify vel yes
-        boundary p p p
-        region box block 0 3.5 0 3.5 0 3.5
-        create_box 2 box
-        """)
+    lmp.commands_string(scenes.particle_box(style, 0, 3.5, ntypes=2))
     for p, t in zip(pos, types):
         lmp.command(f"create_atoms {t} single {p[0]} {p[1]} {p[2]}")
     for t, r in ((1, R1), (2, R2)):
