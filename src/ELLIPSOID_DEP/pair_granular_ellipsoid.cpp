@@ -34,8 +34,9 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
-    freeze_group_bit(0), candidates_step(-1), set_aside(0), restart_history_size(0),
-    impact_velocity(0.0), contact_time(0.0), damping_time(0.0)
+    freeze_group_bit(0), candidates_step(-1), candidates_build_count(-1), set_aside(0),
+    respa_run(false), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
+    damping_time(0.0)
 {
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default
   // transfer, which negates every value when i and j swap, exactly the PairCache swap rule.
@@ -217,6 +218,7 @@ void PairGranularEllipsoid::init_style()
 
   // A plain half list with the bounding-sphere cutoff (atom_style ellipsoid has no radius).
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
+  respa_run = utils::strmatch(update->integrate_style, "^respa");
 
   bool any_history = false;
   for (int i = 1; i <= atom->ntypes; i++)

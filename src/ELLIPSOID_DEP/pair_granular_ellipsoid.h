@@ -84,8 +84,11 @@ class PairGranularEllipsoid : public Pair {
   // candidate_jj[candidate_first[ii] ..] are i's (neighbour indices jj), found for the list
   // built at step candidates_step (Neighbor::lastcall); set_aside counts the pairs left out.
   std::vector<int> candidate_jj, candidate_first;
-  bigint candidates_step;
+  bigint candidates_step, candidates_build_count;    // and Neighbor::ncalls then
   bigint set_aside;
+  // r-RESPA builds before its inner levels move the atoms, so the first evaluation after a
+  // build does not see the build's positions (set by init_style for the run)
+  bool respa_run;
   bool builds_keep_skin() const;
   void find_candidates();
   bool candidates_stale() const;

@@ -122,6 +122,7 @@ void PairGranularEllipsoid::find_candidates()
     candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
   }
   candidates_step = neighbor->lastcall;
+  candidates_build_count = neighbor->ncalls;
 }
 
 // every neighbour is a candidate: the builds do not keep the skin, or the list changed
@@ -137,14 +138,18 @@ void PairGranularEllipsoid::all_candidates()
   }
   set_aside = 0;
   candidates_step = neighbor->lastcall;
+  candidates_build_count = neighbor->ncalls;
 }
 
 // the candidates are not those of the current list: it was built at this step (ago 0;
-// Neighbor::ncalls restarts at every run, so it cannot tell), at another step than theirs,
-// or holds other atoms; or they set pairs aside under settings that no longer allow it
+// Neighbor::ncalls restarts after the build of every run's setup), at another step than
+// theirs, again at their step after their evaluation (a fix or command building between two
+// evaluations: the build count within a run), or holds other atoms; or they set pairs aside
+// under settings that no longer allow it
 bool PairGranularEllipsoid::candidates_stale() const
 {
   return neighbor->ago == 0 || neighbor->lastcall != candidates_step ||
+      neighbor->ncalls != candidates_build_count ||
       static_cast<int>(candidate_first.size()) != list->inum + 1 ||
       (set_aside > 0 && !builds_keep_skin());
 }
@@ -266,10 +271,8 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
 
 bool PairGranularEllipsoid::builds_keep_skin() const
 {
-  // r-RESPA builds before its inner levels move the atoms, so the first evaluation after a
-  // build does not see the build's positions
   return neighbor->every == 1 && neighbor->delay == 0 && neighbor->dist_check == 1 &&
-      neighbor->build_once == 0 && !utils::strmatch(update->integrate_style, "^respa");
+      neighbor->build_once == 0 && !respa_run;
 }
 
 /* ----------------------------------------------------------------------
