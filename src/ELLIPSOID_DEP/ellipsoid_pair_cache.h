@@ -6,9 +6,14 @@
    Layout (PairCache::size(tangential) doubles)
      STATE          0     0 nothing, +-1 separating plane, +-2 contact normal (read with fabs)
      NORMAL         1-3   unit normal from A to B: the plane normal or the last contact normal
-     PLANE_U        4     u: the plane passes through c_A + (1/2 + u)(c_B - c_A)
-     TANGENTIAL     5-7   tangential displacement (only for force laws with a history)
-   evaluate_pair reads and writes slots 0-4 (PIPELINE_SIZE); the force law owns 5-7.
+     PLANE_U        4     plane state: the plane passes through c_A + (1/2 + u)(c_B - c_A)
+     NORMAL_STEP    4-6   contact state: the last change of the contact normal, n_k - n_(k-1)
+                          (zero at the first evaluation of a contact); the next iteration
+                          starts from n_k + (n_k - n_(k-1)), which is one order closer to
+                          n_(k+1) than n_k for a smooth motion, and needs fewer iterations
+     TANGENTIAL     7-9   tangential displacement (only for force laws with a history)
+   evaluate_pair reads and writes slots 0-6 (PIPELINE_SIZE); the force law owns 7-9. Slot 4
+   belongs to the plane or to the contact, as the state says.
 
    The i/j swap rule: every slot changes sign when A and B are swapped (the state by
    convention, n -> -n, u -> -u, s -> -s), so the swapped pair's history is the negated copy
@@ -27,8 +32,8 @@ namespace EllipsoidDep {
 
 class PairCache {
  public:
-  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, TANGENTIAL = 5;
-  static constexpr int PIPELINE_SIZE = 5;      // slots evaluate_pair uses
+  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, NORMAL_STEP = 4, TANGENTIAL = 7;
+  static constexpr int PIPELINE_SIZE = 7;      // slots evaluate_pair uses
   static constexpr int TANGENTIAL_SIZE = 3;    // slots of the tangential displacement
   static constexpr int size(bool tangential_history)
   {
@@ -96,9 +101,26 @@ class PairCache {
       clear();
       return;
     }
-    set(State::Plane, n, (offset - n.dot(ca)) / nd - 0.5);
+    set_plane(n, (offset - n.dot(ca)) / nd - 0.5);
   }
-  void store_contact(const Vec3 &n) { set(State::Contact, n, 0.0); }
+  // a contact normal and its change since the previous evaluation (zero for a new contact)
+  void store_contact(const Vec3 &n, const Vec3 &step = Vec3::Zero())
+  {
+    v[STATE] = static_cast<double>(static_cast<int>(State::Contact));
+    for (int k = 0; k < 3; ++k) {
+      v[NORMAL + k] = n[k];
+      v[NORMAL_STEP + k] = step[k];
+    }
+  }
+  // where the next iteration of a continuing contact starts (not normalised): the stored
+  // normal moved on by its last step, unless the step is not that of a smooth motion
+  // (longer than MAX_PREDICTED_STEP, or not finite); n is usable_normal()'s
+  Vec3 predicted_normal(const Vec3 &n) const
+  {
+    const Vec3 step(v[NORMAL_STEP], v[NORMAL_STEP + 1], v[NORMAL_STEP + 2]);
+    return step.squaredNorm() < MAX_PREDICTED_STEP * MAX_PREDICTED_STEP ? Vec3(n + step) : n;
+  }
+  static constexpr double MAX_PREDICTED_STEP = 0.05;    // radians per evaluation
   // forget the plane or normal (the tangential slots are the force law's)
   void clear()
   {
@@ -115,13 +137,14 @@ class PairCache {
  private:
   double *v;
 
-  void set(State state, const Vec3 &n, double u)
+  void set_plane(const Vec3 &n, double u)
   {
-    v[STATE] = static_cast<double>(static_cast<int>(state));
+    v[STATE] = static_cast<double>(static_cast<int>(State::Plane));
     v[NORMAL] = n[0];
     v[NORMAL + 1] = n[1];
     v[NORMAL + 2] = n[2];
     v[PLANE_U] = u;
+    v[PLANE_U + 1] = v[PLANE_U + 2] = 0.0;    // the contact's slots 5-6
   }
 };
 

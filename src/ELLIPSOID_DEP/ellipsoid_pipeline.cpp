@@ -58,10 +58,12 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
     return decided(Status::Degenerate);
   }
   // A pair in contact at the previous evaluation goes straight to the iteration, warm-started
-  // from its own last normal: the sign of min d(n) decides separation exactly, and the
-  // continuing contact keeps its basin. The Wang test screens pairs that newly come close.
+  // from its own last normal moved on by its last step: the sign of min d(n) decides
+  // separation exactly, and the continuing contact keeps its basin. The Wang test screens
+  // pairs that newly come close.
   const bool continuing_contact = state == PairCache::State::Contact && have_n;
   if (continuing_contact) ++counters.continued;
+  const Vec3 start_n = continuing_contact ? history.predicted_normal(cached_n) : cached_n;
   if (settings.use_wang && !continuing_contact) {
     ++counters.wang_calls;
     const Status ws = wang_classify(a, b, settings.contact);
@@ -83,7 +85,7 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   // ellipsoid_contact without its validity checks, made above (two spheres: its closed form)
   ContactGeometry g = a.sphere && b.sphere
       ? sphere_contact(a, b)
-      : valid_ellipsoid_contact(a, b, settings.contact, have_n ? &cached_n : nullptr);
+      : valid_ellipsoid_contact(a, b, settings.contact, have_n ? &start_n : nullptr);
   counters.iterations += g.iterations;
   if (g.corrected) ++counters.corrections;
   if (g.status == Status::Degenerate) {
@@ -99,7 +101,7 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   }
   ++counters.contacts;
   if (g.status == Status::NotConverged) ++counters.not_converged;
-  history.store_contact(g.normal);
+  history.store_contact(g.normal, continuing_contact ? Vec3(g.normal - cached_n) : Vec3::Zero());
   return g;
 }
 

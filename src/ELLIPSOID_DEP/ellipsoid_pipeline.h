@@ -2,7 +2,7 @@
    ELLIPSOID_DEP kernel: the per-pair pipeline of the paper (Fig. 2) for callers that keep a
    small per-pair cache between steps (PairCache): bounding spheres -> cached separating plane
    -> Wang test (disjoint: build and cache a plane) -> contact iteration warm-started from the
-   cached normal -> normal correction. Its settings and the counters of what it did.
+   cached normal extrapolated by its last step -> normal correction. Its settings and the counters of what it did.
 
    Conventions
    - A is the first body, B the second; the cache belongs to the ordered pair (A, B) (see

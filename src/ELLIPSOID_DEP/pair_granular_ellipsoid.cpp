@@ -230,6 +230,14 @@ void PairGranularEllipsoid::init_style()
   size_history = PairCache::size(any_history);
   // the history fix reads its restart values with its own size: a different size would
   // misread every pair
+  const bool restart_layout_differs = restart_history_size > 0 &&
+      restart_history_size != PairCache::size(true) && restart_history_size != PairCache::size(false);
+  if (!fix_history && restart_layout_differs)
+    error->all(FLERR,
+               "Pair granular/ellipsoid: the restart file holds {} history values per pair, a "
+               "layout of another version of ELLIPSOID_DEP (this one keeps {} or {}); continue "
+               "from write_data/read_data (which starts every contact afresh)",
+               restart_history_size, PairCache::size(false), PairCache::size(true));
   if (!fix_history && restart_history_size > 0 && restart_history_size != size_history)
     error->all(FLERR,
                "Pair granular/ellipsoid: the restart file holds {} history values per pair, "

@@ -533,6 +533,85 @@ TEST(Pipeline, UsableNormal)
   EXPECT_FALSE(history.usable_normal(n));
 }
 
+// A continuing contact starts from its normal extrapolated by its last step: on a smooth
+// motion (B turning about the contact point, at a growing rate, 40 steps) it gives the
+// contact of a cold start to 1e-9, stores n_k - n_(k-1), needs fewer iterations than the
+// plain warm start from n_k (the same evaluations with the step slots zeroed), and its
+// swapped history (B, A) predicts the negated normal.
+TEST(Pipeline, PredictedStartOfAContinuingContact)
+{
+  const auto cases = make_cases({1e-2}, 2, 83);
+  const PipelineSettings ps;
+  long long predicted_total = 0, plain_total = 0;
+  int checked = 0;
+  for (const auto &c : cases) {
+    if (c.a.sphere && c.b.sphere) continue;
+    SCOPED_TRACE(c.label);
+    double cache[PairCache::PIPELINE_SIZE] = {}, plain[PairCache::PIPELINE_SIZE] = {};
+    PipelineCounters predicted_cnt, plain_cnt;
+    const Vec3 pivot = ellipsoid_contact(c.a, c.b, ps.contact).point;
+    const Vec3 axis = c.n.unitOrthogonal();
+    Vec3 previous = Vec3::Zero();
+    bool stayed_in_contact = true;
+    for (int k = 0; k < 40 && stayed_in_contact; ++k) {
+      const Eigen::AngleAxisd turn(1e-4 * k + 1e-8 * k * k, axis);
+      const Mat3 r = turn.toRotationMatrix();
+      const Ellipsoid b =
+          make_ellipsoid(pivot + r * (c.b.center - pivot), Mat3(r * c.b.rotation), c.b.semi_axes);
+      for (int s = 0; s < 3; ++s) plain[PairCache::NORMAL_STEP + s] = 0.0;
+      const ContactGeometry g = evaluate_pair(c.a, b, ps, cache, predicted_cnt);
+      const ContactGeometry h = evaluate_pair(c.a, b, ps, plain, plain_cnt);
+      stayed_in_contact = g.status == Status::Overlapping && h.status == Status::Overlapping;
+      if (!stayed_in_contact) break;
+      const ContactGeometry ref = ellipsoid_contact(c.a, b, ps.contact);
+      EXPECT_LT((g.normal - ref.normal).norm(), 1e-9);
+      EXPECT_LT((h.normal - ref.normal).norm(), 1e-9);
+      const Vec3 step(cache[PairCache::NORMAL_STEP], cache[PairCache::NORMAL_STEP + 1],
+                      cache[PairCache::NORMAL_STEP + 2]);
+      EXPECT_EQ(step, k == 0 ? Vec3::Zero() : Vec3(g.normal - previous));
+      previous = g.normal;
+    }
+    if (!stayed_in_contact) continue;
+    double swapped[PairCache::PIPELINE_SIZE];
+    PairCache::swapped(cache, swapped, PairCache::PIPELINE_SIZE);
+    Vec3 n, ns;
+    ASSERT_TRUE(PairCache(cache).usable_normal(n));
+    ASSERT_TRUE(PairCache(swapped).usable_normal(ns));
+    EXPECT_EQ(PairCache(swapped).predicted_normal(ns), -PairCache(cache).predicted_normal(n));
+    EXPECT_EQ(predicted_cnt.contacts, 40);
+    EXPECT_EQ(predicted_cnt.continued, 39);
+    predicted_total += predicted_cnt.iterations;
+    plain_total += plain_cnt.iterations;
+    ++checked;
+  }
+  ASSERT_GE(checked, 20);
+  EXPECT_LT(predicted_total, 0.8 * plain_total) << predicted_total << " vs " << plain_total;
+  std::printf("predicted start: %lld iterations, plain warm start %lld (%d pairs)\n",
+              predicted_total, plain_total, checked);
+}
+
+// A step that is not that of a smooth motion is not extrapolated; a plane clears the slots.
+TEST(Pipeline, PredictedNormalGuards)
+{
+  double cache[PairCache::PIPELINE_SIZE] = {};
+  const PairCache history(cache);
+  const Vec3 n(0, 0, 1);
+  PairCache(cache).store_contact(n, Vec3(0.01, 0, 0));
+  EXPECT_EQ(history.predicted_normal(n), Vec3(0.01, 0, 1));
+  PairCache(cache).store_contact(n, Vec3(0.06, 0, 0));
+  EXPECT_EQ(history.predicted_normal(n), n);
+  PairCache(cache).store_contact(n, Vec3(NAN, 0, 0));
+  EXPECT_EQ(history.predicted_normal(n), n);
+  PairCache(cache).store_contact(n, Vec3(0, INFINITY, 0));
+  EXPECT_EQ(history.predicted_normal(n), n);
+  PairCache(cache).store_contact(n, Vec3(0.01, 0.02, 0.03));
+  PairCache(cache).store_plane(n, 1.0, Vec3::Zero(), Vec3(0, 0, 4));
+  EXPECT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
+  EXPECT_DOUBLE_EQ(cache[PairCache::PLANE_U], -0.25);
+  EXPECT_EQ(cache[PairCache::PLANE_U + 1], 0.0);
+  EXPECT_EQ(cache[PairCache::PLANE_U + 2], 0.0);
+}
+
 // ---------------------------------------------------------------------------
 TEST(Geometry, MakeEllipsoidAndHomogeneous)
 {

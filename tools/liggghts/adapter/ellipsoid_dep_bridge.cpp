@@ -68,8 +68,10 @@ const char *cache_slot_name(int k)
   using EllipsoidDep::PairCache;
   static const char *const names[CACHE_SIZE] = {"ellipsoid_dep_state", "ellipsoid_dep_nx",
                                                 "ellipsoid_dep_ny", "ellipsoid_dep_nz",
-                                                "ellipsoid_dep_u"};
-  static_assert(PairCache::STATE == 0 && PairCache::NORMAL == 1 && PairCache::PLANE_U == 4,
+                                                "ellipsoid_dep_u_or_stepx", "ellipsoid_dep_stepy",
+                                                "ellipsoid_dep_stepz"};
+  static_assert(PairCache::STATE == 0 && PairCache::NORMAL == 1 && PairCache::PLANE_U == 4 &&
+                    PairCache::NORMAL_STEP == 4 && PairCache::PIPELINE_SIZE == 7,
                 "slot names follow the PairCache layout");
   return names[k];
 }

@@ -9,7 +9,7 @@
    the kernel's ContactGeometry back into SurfacesIntersectData (en, deltan, contact_point,
    reff), which LIGGGHTS's normal / tangential / rolling / cohesion models then consume.
 
-   Per-pair cache: the kernel's PairCache::PIPELINE_SIZE (5) doubles live in LIGGGHTS's contact history
+   Per-pair cache: the kernel's PairCache::PIPELINE_SIZE (7) doubles live in LIGGGHTS's contact history
    (newtonflag 1: every entry changes sign under i <-> j). The pair keeps the
    CONTACT_SURFACE_MODEL contact flag while the cache holds something, so a cached separating
    plane survives re-neighbouring (fix contacthistory keeps only flagged pairs).
@@ -136,7 +136,7 @@ namespace ContactModels
       check_ellipsoid(i);
       check_ellipsoid(j);
 
-      double scratch[EllipsoidDepLiggghts::CACHE_SIZE] = {0, 0, 0, 0, 0};
+      double scratch[EllipsoidDepLiggghts::CACHE_SIZE] = {};
       double *const cache = sidata.contact_history ? &sidata.contact_history[cache_offset] : scratch;
 
       EllipsoidDepLiggghts::Contact c;
