@@ -117,3 +117,24 @@ def test_explicit_dt_is_used_as_given(tmp_path):
     assert not re.search(r"^time step ", log, re.M)    # no probe
     warnings = re.findall(r"^WARNING.*", log, re.M)
     assert len(warnings) == 1 and "NOT at rest" in warnings[0], warnings
+
+
+def test_deposit_writes_a_data_file_that_reads_back(tmp_path):
+    """The probe that finds the time step leaves no ellipsoid behind: write_data after the
+    deposit counts its N ellipsoids, and read_data accepts the file (LAMMPS's "delete_atoms
+    group all" kept the probe's, and read_data refused the header of N + 1)."""
+    out = tmp_path / "data"
+    out.mkdir()
+    lmp = h.deposit_lammps(out, {"N": "30", "maxchunks": "1", "chunk": "10", "image": "0",
+                                 "out": str(out)})
+    data = out / "deposit.data"
+    lmp.command(f"write_data {data}")
+    lmp.close()
+    with open(data) as f:
+        header = f.read(2000)
+    assert re.search(r"^30 atoms$", header, re.M) and re.search(r"^30 ellipsoids$", header, re.M)
+    reread = h.new_lammps(tmp_path, "reread")
+    reread.command("atom_style ellipsoid")
+    reread.command(f"read_data {data}")
+    assert reread.get_natoms() == 30
+    reread.close()
