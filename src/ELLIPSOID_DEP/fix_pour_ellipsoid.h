@@ -14,6 +14,7 @@
 
 #include "fix.h"
 
+#include "ellipsoid_cell_grid.h"
 #include "ellipsoid_contact.h"
 #include "ellipsoid_pour_sampler.h"
 
@@ -86,7 +87,9 @@ class FixPourEllipsoid : public Fix {
   // fix_pour_ellipsoid_insert.cpp
   void find_maxid();
   std::vector<EllipsoidDep::Ellipsoid> gather_near_region(int reserve);
-  bool overlaps(const EllipsoidDep::Ellipsoid &, const std::vector<EllipsoidDep::Ellipsoid> &);
+  EllipsoidDep::CellGrid near_cells(const std::vector<EllipsoidDep::Ellipsoid> &, int nnew) const;
+  bool overlaps(const EllipsoidDep::Ellipsoid &, const std::vector<EllipsoidDep::Ellipsoid> &,
+                const EllipsoidDep::CellGrid &) const;
   bool near_region(const double *x, double bound) const;
   bool outside(int dim, double value, double lo, double hi) const;
   double batch_depth(double rn, double height) const;

@@ -148,20 +148,48 @@ std::vector<Ellipsoid> FixPourEllipsoid::gather_near_region(int reserve)
   return near;
 }
 
-// does the candidate overlap (or touch) any near particle? exact test of the kernel
-bool FixPourEllipsoid::overlaps(const Ellipsoid &cand, const std::vector<Ellipsoid> &near)
+/* ----------------------------------------------------------------------
+   cells of the near particles, as wide as two of the largest bounding radii: a particle
+   they skip cannot pass the bounding-sphere test of overlaps(). Over the region (positions
+   outside fall in its edge cells), over the box in periodic dimensions, where they wrap as
+   in domain->minimum_image.
+------------------------------------------------------------------------- */
+
+CellGrid FixPourEllipsoid::near_cells(const std::vector<Ellipsoid> &near, int nnew) const
 {
-  for (const Ellipsoid &other : near) {
+  // a drawn semi-axis may exceed largest_semi_axis() by a few ulp
+  double radius = bounding_max * (1.0 + 1e-9);
+  for (const Ellipsoid &e : near) radius = MAX(radius, e.bounding_radius);
+  Vec3 lo(xlo, ylo, lo_current), hi(xhi, yhi, hi_current);    // the region's bounding box
+  std::array<bool, 3> periodic;
+  for (int d = 0; d < 3; d++) {
+    periodic[d] = domain->periodicity[d];
+    if (periodic[d]) {
+      lo[d] = domain->boxlo[d];
+      hi[d] = domain->boxhi[d];
+    }
+  }
+  CellGrid cells(lo, hi, periodic, 2.0 * radius, near.size() + nnew);
+  for (const Ellipsoid &e : near) cells.insert(e.center);
+  return cells;
+}
+
+// does the candidate overlap (or touch) a near particle? exact test of the kernel on those of
+// its cells; the answer does not depend on the order (wang_classify has no side effect)
+bool FixPourEllipsoid::overlaps(const Ellipsoid &cand, const std::vector<Ellipsoid> &near,
+                                const CellGrid &cells) const
+{
+  return cells.any_near(cand.center, [&](int i) {
+    const Ellipsoid &other = near[i];
     double d[3] = {cand.center[0] - other.center[0], cand.center[1] - other.center[1],
                    cand.center[2] - other.center[2]};
     domain->minimum_image(FLERR, d);
     const double reach = cand.bounding_radius + other.bounding_radius;
-    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > reach * reach) continue;
+    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > reach * reach) return false;
     Ellipsoid image = other;    // the periodic image next to the candidate
     image.center = cand.center - Vec3(d[0], d[1], d[2]);
-    if (wang_classify(image, cand, contact_settings) != Status::Separated) return true;
-  }
-  return false;
+    return wang_classify(image, cand, contact_settings) != Status::Separated;
+  });
 }
 
 /* ----------------------------------------------------------------------
@@ -187,6 +215,7 @@ void FixPourEllipsoid::pre_exchange()
   hi_current = zhi + (update->ntimestep - nfirst) * update->dt * rate;
 
   std::vector<Ellipsoid> near = gather_near_region(nnew);
+  CellGrid cells = near_cells(near, nnew);
   int nsuccess = 0;
   bigint batch_failed = 0;
 
@@ -210,7 +239,7 @@ void FixPourEllipsoid::pre_exchange()
         xyz_random(h, coord);
         sampler->orientation(quat);
         cand = make_particle(Vec3(coord[0], coord[1], coord[2]), quat, axes);
-        if (!overlaps(cand, near)) {
+        if (!overlaps(cand, near, cells)) {
           success = true;
           break;
         }
@@ -222,6 +251,7 @@ void FixPourEllipsoid::pre_exchange()
       continue;
     }
     near.push_back(cand);
+    cells.insert(cand.center);
     nsuccess++;
 
     // velocity: a stream's as if fallen from the top of the region (fix pour); a cloud is
