@@ -25,6 +25,7 @@
 #include "granular_ellipsoid_atoms.h"
 
 #include <cmath>
+#include <string>
 
 using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
@@ -32,6 +33,9 @@ using MathConst::MY_4PI3;
 
 static constexpr int NEAR_SIZE = 10;      // x, semi-axes, quaternion
 static constexpr int MAX_HEIGHTS = 10;    // heights tried per particle before it fails
+// Domain::minimum_image takes the file name as a std::string: FLERR would build and free
+// one per tested pair
+static const std::string THIS_FILE = __FILE__;
 
 /* ---------------------------------------------------------------------- */
 
@@ -183,7 +187,7 @@ bool FixPourEllipsoid::overlaps(const Ellipsoid &cand, const std::vector<Ellipso
     const Ellipsoid &other = near[i];
     double d[3] = {cand.center[0] - other.center[0], cand.center[1] - other.center[1],
                    cand.center[2] - other.center[2]};
-    domain->minimum_image(FLERR, d);
+    domain->minimum_image(THIS_FILE, __LINE__, d);
     const double reach = cand.bounding_radius + other.bounding_radius;
     if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > reach * reach) return false;
     Ellipsoid image = other;    // the periodic image next to the candidate
