@@ -167,27 +167,31 @@ def test_cutoff_asks_every_inserting_fix(tmp_path, other, radius):
     assert cut == pytest.approx(2 * radius + 0.01, rel=1e-6)
 
 
-def test_no_insertion_overlaps(tmp_path):
-    """A dense batch (volume fraction 0.3, periodic x y): every pair whose bounding spheres
-    meet is proven disjoint by an independent separating-axis search."""
+@pytest.mark.parametrize("boundary", ["p p f", "f p p"])
+def test_no_insertion_overlaps(tmp_path, boundary):
+    """A dense batch (volume fraction 0.3): every pair whose bounding spheres meet is proven
+    disjoint by an independent separating-axis search. The box is 4 of the pour's search
+    cells wide (twice the largest bounding radius, 0.145), so a periodic side's overlaps are
+    found only through the cells' wrap-around; a side that is not periodic has edge cells."""
+    periodic = tuple(flag == "p" for flag in boundary.split())
     lmp = h.new_lammps(tmp_path)
-    for c in base_commands(box=(0, 0.4, 0, 0.4, 0, 1)):
+    for c in base_commands(box=(0, 0.6, 0, 0.6, 0, 1), boundary=boundary):
         lmp.command(c)
-    lmp.command("region ins block 0 0.4 0 0.4 0.6 1.0")
-    lmp.command("fix p all pour/ellipsoid 400 1 777 region ins size 0.02 0.04 "
+    lmp.command("region ins block 0 0.6 0 0.6 0.6 1.0")
+    lmp.command("fix p all pour/ellipsoid 1000 1 777 region ins size 0.02 0.04 "
                 "shape 2.0 1.5 vol 0.3 200 every 1000")
     lmp.command("run 1")
     snap = h.snapshot(lmp, tmp_path)
     rejected = lmp.extract_fix("p", 0, 1, 2)
     lmp.close()
     n = len(snap["id"])
-    assert n > 100
+    assert n > 300
     assert rejected > 0  # the test exercised the overlap rejection
     box = snap["box"]
     checked = 0
     for i in range(n):
         # the pairs (i, j > i) whose bounding spheres meet
-        d = geometry.minimum_image(snap["x3"][i + 1:] - snap["x3"][i], box, (True, True, False))
+        d = geometry.minimum_image(snap["x3"][i + 1:] - snap["x3"][i], box, periodic)
         reach = snap["semi"][i].max() + snap["semi"][i + 1:].max(axis=1)
         for k in np.flatnonzero((d * d).sum(axis=1) <= reach * reach):
             j = i + 1 + k
@@ -195,7 +199,7 @@ def test_no_insertion_overlaps(tmp_path):
                                               d[k], snap["quat"][j], snap["semi"][j])
             assert gap < 0.0, (snap["id"][i], snap["id"][j], gap)
             checked += 1
-    assert checked > 20  # close pairs existed
+    assert checked > 80  # close pairs existed
 
 
 def test_overlap_checker_detects_overlap():
