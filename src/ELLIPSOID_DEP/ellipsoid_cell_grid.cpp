@@ -58,20 +58,19 @@ int CellGrid::cell(int dim, double value) const
   return static_cast<int>(c);
 }
 
-// the cells next to c (and c) in one dimension, each once
+// c and the cells next to it in one dimension, each once; c first, where a query's overlaps
+// are likeliest, so that a caller stopping at the first one stops sooner
 int CellGrid::neighbours(int dim, int c, int out[3]) const
 {
   const int n = count[dim];
-  if (periodic[dim] && n < 3) {
-    for (int i = 0; i < n; i++) out[i] = i;
-    return n;
-  }
   int m = 0;
-  for (int e = c - 1; e <= c + 1; e++) {
+  out[m++] = c;
+  for (int e : {c - 1, c + 1}) {
     if (periodic[dim])
-      out[m++] = (e + n) % n;
-    else if (e >= 0 && e < n)
-      out[m++] = e;
+      e = (e + n) % n;
+    else if (e < 0 || e >= n)
+      continue;
+    if (e != out[0] && (m == 1 || e != out[1])) out[m++] = e;    // fewer than 3 cells
   }
   return m;
 }

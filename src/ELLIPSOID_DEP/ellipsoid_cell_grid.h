@@ -5,7 +5,8 @@
    Engine independent: C++17 + Eigen only. No LAMMPS header, no MPI, no I/O, no exceptions.
 
    The promise: any_near(x, visit) visits every stored point whose nearest periodic image is
-   within `reach` of x, and may visit others; each point at most once. The nearest image is
+   within `reach` of x, and may visit others; each point at most once, those of x's own cell
+   first (where a caller that stops at the first hit is likeliest to stop). The nearest image is
    taken per dimension, as LAMMPS's Domain::minimum_image does in an orthogonal box. Cells are
    at least `reach` wide (plus a slack for rounding), so such a point lies in x's cell or in a
    neighbouring one.

@@ -145,3 +145,19 @@ TEST(CellGrid, AtMostMaxCells)
   const std::vector<int> seen = visits(grid, Eigen::Vector3d(0.1, 0.5, 0.5));
   EXPECT_EQ(seen, std::vector<int>({1, 1}));
 }
+
+// the pour stops at the first overlap, most often in the candidate's own cell
+TEST(CellGrid, VisitsTheQuerysOwnCellFirst)
+{
+  // 5 cells of 1.2 per dimension
+  const Box box{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 6), {true, true, false}};
+  CellGrid grid(box.lo, box.hi, box.periodic, 1.0, 1000);
+  grid.insert(Eigen::Vector3d(2.0, 2.0, 2.0));    // a neighbouring cell, in every dimension
+  grid.insert(Eigen::Vector3d(3.5, 3.5, 3.5));    // the query's cell
+  int first = -1;
+  grid.any_near(Eigen::Vector3d(3.0, 3.0, 3.0), [&](int i) {
+    first = i;
+    return true;
+  });
+  EXPECT_EQ(first, 1);
+}
