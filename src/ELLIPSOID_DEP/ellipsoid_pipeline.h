@@ -82,14 +82,20 @@ struct BoundingTest {
   double dist, reach;
   bool apart;
 };
-inline BoundingTest bounding_test(const Ellipsoid &a, const Ellipsoid &b)
+// The centres and bounding radii alone, for callers that have not built the bodies.
+inline BoundingTest bounding_test(const Vec3 &center_a, double radius_a, const Vec3 &center_b,
+                                  double radius_b)
 {
   BoundingTest t;
-  t.dc = b.center - a.center;
+  t.dc = center_b - center_a;
   t.dist = t.dc.norm();
-  t.reach = a.bounding_radius + b.bounding_radius;
+  t.reach = radius_a + radius_b;
   t.apart = t.dist > t.reach && std::isfinite(t.dist) && std::isfinite(t.reach);
   return t;
+}
+inline BoundingTest bounding_test(const Ellipsoid &a, const Ellipsoid &b)
+{
+  return bounding_test(a.center, a.bounding_radius, b.center, b.bounding_radius);
 }
 
 // What an evaluation does with a pair whose bounding spheres are apart (cache cleared,

@@ -68,9 +68,11 @@ class PairGranularEllipsoid : public Pair {
   // the history doubles of neighbour jj of i (PairCache layout)
   double *pair_history(int i, int jj) const;
 
-  // per-atom state of owned + ghost atoms, rebuilt each force evaluation
+  // per-atom state of owned + ghost atoms, rebuilt each force evaluation for the atoms of the
+  // candidate pairs (state_needed, set with the candidates; the others' states are stale)
   std::vector<EllipsoidState> states;
   std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
+  std::vector<char> state_needed;
   // per ghost atom (index - nlocal): the owned atom of the same ID (a periodic image on this
   // rank) or -1, found when the ghosts change (neighbour list builds)
   std::vector<int> ghost_owner;

@@ -33,19 +33,25 @@ void PairGranularEllipsoid::find_ghost_owners()
   }
 }
 
+// the states of the atoms in candidate pairs (state_needed): only their pairs are evaluated
 void PairGranularEllipsoid::update_states()
 {
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   states.resize(nall);
   state_keys.resize(nall);
-  for (int i = 0; i < nlocal; i++) atoms.update_state(i, states[i], state_keys[i]);
+  if (static_cast<int>(state_needed.size()) != nall) state_needed.assign(nall, 1);
+  const char *const needed = state_needed.data();
+  for (int i = 0; i < nlocal; i++)
+    if (needed[i]) atoms.update_state(i, states[i], state_keys[i]);
   // a ghost that is an image of an owned atom copies its state (checked value by value)
   if (neighbor->ago == 0 || static_cast<int>(ghost_owner.size()) != atom->nghost)
     find_ghost_owners();
   for (int i = nlocal; i < nall; i++) {
+    if (!needed[i]) continue;
     const int k = ghost_owner[i - nlocal];
-    if (k < 0 || !atoms.copy_state(i, k, states[k], state_keys[k], states[i], state_keys[i]))
+    if (k < 0 || !needed[k] ||
+        !atoms.copy_state(i, k, states[k], state_keys[k], states[i], state_keys[i]))
       atoms.update_state(i, states[i], state_keys[i]);
   }
 }
@@ -92,25 +98,33 @@ inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch,
    within the skin of their bounding spheres are the candidates, the others are forgotten and
    set aside (LAMMPS's size lists keep the pairs of spheres within radsum + skin);
    builds_keep_skin() says they stay apart until the next build. The rejects this makes are
-   counted here; at the other steps compute() counts the pairs set aside.
+   counted here; at the other steps compute() counts the pairs set aside. Only the atoms of
+   the candidates need their states until the next build. The bounding spheres come from the
+   positions and semi-axes: the states are built after this, for those atoms.
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::find_candidates()
 {
-  const int inum = list->inum;
+  const int inum = list->inum, nall = atom->nlocal + atom->nghost;
   // a margin over the rounding of the distances and of LAMMPS's displacement test
   const double skin = neighbor->skin * (1.0 + 1e-10);
-  const EllipsoidState *const state = states.data();
+  const EllipsoidAtoms atoms(atom);
+  double **x = atom->x;
   const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
   candidate_jj.clear();
   candidate_first.assign(inum + 1, 0);
+  state_needed.assign(nall, 0);
   set_aside = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = list->ilist[ii];
     const int *jlist = list->firstneigh[i];
     int *touch = fix_history->firstflag[i];
+    const Vec3 ci(x[i][0], x[i][1], x[i][2]);
+    const double ri = atoms.bounding_radius(i);
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const BoundingTest t = bounding_test(state[i].shape, state[jlist[jj] & NEIGHMASK].shape);
+      const int j = jlist[jj] & NEIGHMASK;
+      const BoundingTest t =
+          bounding_test(ci, ri, Vec3(x[j][0], x[j][1], x[j][2]), atoms.bounding_radius(j));
       const bool beyond_skin = t.dist > t.reach + skin;
       if (beyond_skin &&
           forget_if_apart(t, pair_history(i, jj), touch[jj], tangential_slots, counters)) {
@@ -118,6 +132,7 @@ void PairGranularEllipsoid::find_candidates()
         continue;
       }
       candidate_jj.push_back(jj);
+      state_needed[i] = state_needed[j] = 1;
     }
     candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
   }
@@ -137,6 +152,7 @@ void PairGranularEllipsoid::all_candidates()
     candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
   }
   set_aside = 0;
+  state_needed.assign(atom->nlocal + atom->nghost, 1);
   candidates_step = neighbor->lastcall;
   candidates_build_count = neighbor->ncalls;
 }
@@ -160,6 +176,11 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   history_update = update->setupflag == 0;
+  const bool refresh = candidates_stale();
+  if (refresh && neighbor->ago == 0 && builds_keep_skin())
+    find_candidates();
+  else if (refresh)
+    all_candidates();
   update_states();
   const bool record = contacts.recording();
   if (record) contacts.start(update->ntimestep);
@@ -179,11 +200,6 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   const int stride = size_history;
   const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
 
-  const bool refresh = candidates_stale();
-  if (refresh && neighbor->ago == 0 && builds_keep_skin())
-    find_candidates();
-  else if (refresh)
-    all_candidates();
   const int *const candidates = candidate_jj.data();
 
   for (int ii = 0; ii < inum; ii++) {

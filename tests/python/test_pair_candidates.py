@@ -134,6 +134,39 @@ def test_polydisperse_gas_moves_as_pair_granular():
     np.testing.assert_allclose(v, v_ref, rtol=0, atol=1e-8)
 
 
+def run_image_collision(style):
+    """Three spheres in a periodic box, all pulled along +x (a uniform field: their relative
+    motion is that of no field, their velocities change every step). A small one bounces off
+    the large one (along y) and flies off; then a third one reaches the large one's periodic
+    image through the x boundary. The half list then holds that pair as the third atom and the
+    large one's image, so the large atom itself is in no pair while its image is: its state
+    must be fresh, not the one of its first collision. Positions and velocities by atom ID."""
+    box = 3.0
+    pos = np.array([[2.65, 1.5, 1.5], [2.65, 2.4, 1.5], [1.0, 1.5, 1.5]])
+    vel = np.array([[0.0, 0.0, 0.0], [0.0, -1.0, 0.0], [-0.5, 0.0, 0.0]])
+    lmp = spheres(style, pos, [3, 1, 2], vel, box)
+    lmp.commands_string("""
+        fix pull all gravity 0.2 vector -1 0 0
+        timestep 2e-4
+        run 7500
+        """)
+    x, v = by_id(lmp, "x"), by_id(lmp, "v")
+    lmp.close()
+    return x, v
+
+
+def test_collision_through_the_boundary_moves_as_pair_granular():
+    x_ref, v_ref = run_image_collision("sphere")
+    x, v = run_image_collision("ellipsoid")
+    # both collisions happened: the small one left along +y, the third one (sent along -x)
+    # was stopped by the large one, which it pushed along -x
+    assert v_ref[1][1] > 0.5 and v_ref[2][0] > -0.1 and v_ref[0][0] < -0.2, v_ref
+    dx = x - x_ref
+    dx -= 3.0 * np.round(dx / 3.0)
+    np.testing.assert_allclose(dx, 0.0, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(v, v_ref, rtol=0, atol=1e-8)
+
+
 def test_counters_as_if_every_neighbour_was_visited():
     ours = run_gas("ellipsoid")[2]
     # a build at every step, every neighbour visited: another list, so only the pairs past
