@@ -49,6 +49,7 @@ void CellGrid::insert(const Eigen::Vector3d &x)
 int CellGrid::cell(int dim, double value) const
 {
   double c = std::floor((value - lo[dim]) / width[dim]);
+  if (!std::isfinite(c)) return 0;    // a point nowhere (NaN, inf): any cell, but a defined one
   if (periodic[dim]) {
     c = std::fmod(c, count[dim]);    // exact for whole numbers
     if (c < 0.0) c += count[dim];

@@ -144,7 +144,7 @@ class PairCache {
     v[NORMAL + 1] = n[1];
     v[NORMAL + 2] = n[2];
     v[PLANE_U] = u;
-    v[PLANE_U + 1] = v[PLANE_U + 2] = 0.0;    // the contact's slots 5-6
+    v[NORMAL_STEP + 1] = v[NORMAL_STEP + 2] = 0.0;    // the rest of the contact's step
   }
 };
 

@@ -101,7 +101,10 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   }
   ++counters.contacts;
   if (g.status == Status::NotConverged) ++counters.not_converged;
-  history.store_contact(g.normal, continuing_contact ? Vec3(g.normal - cached_n) : Vec3::Zero());
+  // only an iterated normal moves the next start on: a fast-mode contact accepted at its
+  // (extrapolated) start would otherwise extrapolate its own extrapolation, and turn on
+  const bool iterated = continuing_contact && g.corrected;
+  history.store_contact(g.normal, iterated ? Vec3(g.normal - cached_n) : Vec3::Zero());
   return g;
 }
 

@@ -103,7 +103,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t nbytes)
   // pipeline twice, then the swapped pair with the swapped cache
   PipelineSettings ps;
   PipelineCounters cnt;
-  double cache[PairCache::PIPELINE_SIZE] = {0, 0, 0, 0, 0};
+  double cache[PairCache::PIPELINE_SIZE] = {};
   for (int k = 0; k < 2; ++k) check_geometry(evaluate_pair(a, b, ps, cache, cnt));
   for (double c : cache)
     if (!std::isfinite(c)) fail("cache nan");

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -160,4 +161,20 @@ TEST(CellGrid, VisitsTheQuerysOwnCellFirst)
     return true;
   });
   EXPECT_EQ(first, 1);
+}
+
+// a point or a query that is nowhere (NaN, inf) falls into some cell instead of an undefined
+// integer conversion; a finite query far from it does not see it
+TEST(CellGrid, NonFinitePointsHaveACell)
+{
+  const Box box{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 6), {true, true, false}};
+  CellGrid grid(box.lo, box.hi, box.periodic, 1.0, 1000);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  grid.insert(Eigen::Vector3d(nan, 1.0, 1.0));
+  grid.insert(Eigen::Vector3d(1.0, inf, -inf));
+  grid.insert(Eigen::Vector3d(3.5, 3.5, 3.5));
+  EXPECT_EQ(visits(grid, Eigen::Vector3d(3.5, 3.5, 3.5)), std::vector<int>({0, 0, 1}));
+  EXPECT_EQ(grid.size(), 3u);
+  visits(grid, Eigen::Vector3d(nan, nan, inf));    // defined, whatever it visits
 }

@@ -412,7 +412,7 @@ TEST(Pipeline, CachedPlaneAndSwap)
   for (const auto &c : cases) {
     SCOPED_TRACE(c.label);
     if ((c.b.center - c.a.center).norm() > c.a.bounding_radius + c.b.bounding_radius) continue;
-    double cache[PairCache::PIPELINE_SIZE] = {0, 0, 0, 0, 0};
+    double cache[PairCache::PIPELINE_SIZE] = {};
     const PairCache history(cache);
     PipelineCounters cnt;
     auto g = evaluate_pair(c.a, c.b, ps, cache, cnt);
@@ -448,7 +448,7 @@ TEST(Pipeline, CachedPlaneAndSwap)
     // without Wang / planes: same contact
     PipelineSettings raw;
     raw.use_planes = raw.use_wang = false;
-    double c2[PairCache::PIPELINE_SIZE] = {0, 0, 0, 0, 0};
+    double c2[PairCache::PIPELINE_SIZE] = {};
     const auto g2 = evaluate_pair(c.a, b2, raw, c2, cnt);
     EXPECT_LT((g2.normal - ref.normal).norm(), 1e-9);
     // far apart: bounding reject clears the cache
@@ -588,6 +588,43 @@ TEST(Pipeline, PredictedStartOfAContinuingContact)
   EXPECT_LT(predicted_total, 0.8 * plain_total) << predicted_total << " vs " << plain_total;
   std::printf("predicted start: %lld iterations, plain warm start %lld (%d pairs)\n",
               predicted_total, plain_total, checked);
+}
+
+// In the fast mode (correction_angle > 0) a contact accepted at its start, without the
+// iteration, stores no step: its normal must not turn on by extrapolating its own
+// extrapolation. A pair moved for 10 evaluations, then held still: from the second still
+// evaluation on the normal does not change.
+TEST(Pipeline, FastModeAcceptedStartStoresNoStep)
+{
+  const auto cases = make_cases({1e-2}, 2, 89);
+  PipelineSettings fast;
+  fast.contact.correction_angle = 2.0 * kPi / 180.0;
+  int checked = 0;
+  for (const auto &c : cases) {
+    if (c.a.sphere && c.b.sphere) continue;
+    SCOPED_TRACE(c.label);
+    double cache[PairCache::PIPELINE_SIZE] = {};
+    PipelineCounters cnt;
+    const Vec3 pivot = ellipsoid_contact(c.a, c.b, fast.contact).point;
+    const Vec3 axis = c.n.unitOrthogonal();
+    Ellipsoid b = c.b;
+    for (int k = 0; k < 10; ++k) {
+      const Mat3 r = Eigen::AngleAxisd(2e-3 * k, axis).toRotationMatrix();
+      b = make_ellipsoid(pivot + r * (c.b.center - pivot), Mat3(r * c.b.rotation), c.b.semi_axes);
+      evaluate_pair(c.a, b, fast, cache, cnt);
+    }
+    Vec3 held = Vec3::Zero();
+    bool in_contact_throughout = true;
+    for (int k = 0; k < 30; ++k) {
+      const ContactGeometry g = evaluate_pair(c.a, b, fast, cache, cnt);
+      in_contact_throughout = in_contact_throughout && in_contact(g);
+      if (k == 1) held = g.normal;
+      if (k > 1) EXPECT_LT((g.normal - held).norm(), 1e-12) << "still evaluation " << k;
+    }
+    if (!in_contact_throughout) continue;
+    ++checked;
+  }
+  EXPECT_GE(checked, 20);
 }
 
 // A step that is not that of a smooth motion is not extrapolated; a plane clears the slots.
