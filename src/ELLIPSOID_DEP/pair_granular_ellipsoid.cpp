@@ -26,8 +26,16 @@
 using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 
-static const char HISTORY_FIX_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID";
 static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
+// The history fix's ID names its values per pair: read_restart hands a fix the per-atom values
+// of the fix of its ID in the file, and a fix of another size (another layout, or a tangential
+// history added or removed by a pair_style given again after read_restart) would misread them.
+// Under another ID they stay unused (LAMMPS logs "Unused restart file peratom fix info") and
+// the contacts start afresh.
+static std::string history_fix_id(int size)
+{
+  return fmt::format("NEIGH_HISTORY_GRANULAR_ELLIPSOID_{}", size);
+}
 
 /* ---------------------------------------------------------------------- */
 
@@ -72,7 +80,7 @@ PairGranularEllipsoid::~PairGranularEllipsoid()
   if (!fix_history)
     modify->delete_fix(HISTORY_DUMMY_ID);
   else
-    modify->delete_fix(HISTORY_FIX_ID);
+    modify->delete_fix(history_id);
 
   if (allocated) {
     memory->destroy(setflag);
@@ -248,12 +256,13 @@ void PairGranularEllipsoid::init_style()
                restart_history_size > size_history ? "removed" : "added");
 
   if (!fix_history) {
+    history_id = history_fix_id(size_history);
     fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
-        HISTORY_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY {}", HISTORY_FIX_ID, size_history), 1));
+        HISTORY_DUMMY_ID, fmt::format("{} all NEIGH_HISTORY {}", history_id, size_history), 1));
     fix_history->pair = this;
     fix_dummy = nullptr;
   } else {
-    fix_history = dynamic_cast<FixNeighHistory *>(modify->get_fix_by_id(HISTORY_FIX_ID));
+    fix_history = dynamic_cast<FixNeighHistory *>(modify->get_fix_by_id(history_id));
     if (!fix_history) error->all(FLERR, "Could not find pair granular/ellipsoid history fix");
     if (fix_history->get_dnum() != size_history)
       error->all(FLERR,

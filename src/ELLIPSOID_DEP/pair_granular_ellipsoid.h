@@ -15,6 +15,7 @@
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
 
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -60,6 +61,7 @@ class PairGranularEllipsoid : public Pair {
 
   class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
+  std::string history_id;    // fix_history's ID, which names its size (history_fix_id())
   int size_history;       // EllipsoidDep::PairCache::size(any law keeps a tangential history)
   bool history_update;    // false: look at the stored history without advancing it
   int freeze_group_bit;

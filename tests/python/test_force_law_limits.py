@@ -16,8 +16,10 @@ Specification:
   it exceeds 1 (velocity Verlet damps stably below 2); an undamped law reports none.
 """
 import math
+import os
 import re
 
+import numpy as np
 import pytest
 from scipy.special import beta
 
@@ -157,6 +159,56 @@ def test_restart_with_the_same_history_size_continues(tmp_path):
     restart_then(tmp_path / "pair.restart",
                  two_spheres("tangential history 1e3 0.5", speed=-SPEED),
                  f"pair_coeff * * hertz {KN} {K} tangential history 2e3 0.3\nrun 0\n")
+
+
+# written with the plugin of f74bd3f, whose history had 8 values per pair (data/in.old_layout_8:
+# three ellipsoids in a row, two contacts with a tangential history)
+OLD_LAYOUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "old_layout_8.restart")
+OLD_PAIR = "pair_style granular/ellipsoid\npair_coeff * * hertz 1.0e4 20.0 tangential history 2.0e3 0.5\n"
+
+
+@pytest.mark.parametrize("commands", ["", OLD_PAIR])    # pair_style again: the same instance
+def test_restart_of_the_old_history_layout_is_refused(commands):
+    lmp = new_lammps()
+    try:
+        with pytest.raises(Exception, match=r"the restart file holds 8 history values per pair, "
+                                            r"a layout of another version"):
+            lmp.commands_string(f"read_restart {OLD_LAYOUT}\ncomm_modify vel yes\n" + commands +
+                                "run 0\n")
+    finally:
+        lmp.close()
+
+
+def forces_by_id(lmp):
+    n = lmp.extract_global("nlocal")
+    ids = lmp.numpy.extract_atom("id")[:n]
+    return lmp.numpy.extract_atom("f")[:n][np.argsort(ids)].copy()
+
+
+def test_pair_style_replaced_after_an_old_restart_starts_the_contacts_afresh(tmp_path):
+    """A pair style replaced after read_restart (pair_style none, then granular/ellipsoid: a
+    new instance, without the file's pair record) cannot see the old layout; the history
+    fix's ID names its size, so the file's 8 values per pair stay unused (LAMMPS logs them)
+    instead of being read as 10: the forces are those of the same positions read from a data
+    file, where every contact starts afresh."""
+    data = tmp_path / "old.data"
+    lmp = h.new_lammps(tmp_path, "again")
+    lmp.commands_string(f"read_restart {OLD_LAYOUT}\ncomm_modify vel yes\npair_style none\n" +
+                        OLD_PAIR +
+                        "fix i all nve/ellipsoid\nrun 0\n")
+    again = forces_by_id(lmp)
+    log = h.read_log(lmp)
+    lmp.command(f"write_data {data}")
+    lmp.close()
+    assert re.search(r"Unused restart file peratom fix info:\n\s+fix style: NEIGH_HISTORY, "
+                     r"fix ID: NEIGH_HISTORY_GRANULAR_ELLIPSOID\n", log), log[-2000:]
+    lmp = h.new_lammps(tmp_path, "data")
+    lmp.commands_string(f"atom_style ellipsoid\ncomm_modify vel yes\nread_data {data}\n" +
+                        OLD_PAIR + "fix i all nve/ellipsoid\nrun 0\n")
+    fresh = forces_by_id(lmp)
+    lmp.close()
+    assert np.count_nonzero(np.abs(fresh).sum(axis=1)) == 3    # both contacts
+    np.testing.assert_allclose(again, fresh, rtol=1e-12, atol=0)
 
 
 # ---- the Hertz contact time -----------------------------------------------------------------

@@ -138,9 +138,12 @@ def run_image_collision(style):
     """Three spheres in a periodic box, all pulled along +x (a uniform field: their relative
     motion is that of no field, their velocities change every step). A small one bounces off
     the large one (along y) and flies off; then a third one reaches the large one's periodic
-    image through the x boundary. The half list then holds that pair as the third atom and the
-    large one's image, so the large atom itself is in no pair while its image is: its state
-    must be fresh, not the one of its first collision. Positions and velocities by atom ID."""
+    image through the x boundary, where the half list holds one atom and the other's image:
+    for about 2000 steps, the collision among them, an image's state is needed while its
+    owner's is not (seen in the pair's own accounting when this test was written), and the
+    image's state must be built fresh. (Here the copy's own comparison refused the owner's
+    old state as well, so the test does not fail when only the pair's test that the owner is
+    needed is removed.) Positions and velocities by atom ID."""
     box = 3.0
     pos = np.array([[2.65, 1.5, 1.5], [2.65, 2.4, 1.5], [1.0, 1.5, 1.5]])
     vel = np.array([[0.0, 0.0, 0.0], [0.0, -1.0, 0.0], [-0.5, 0.0, 0.0]])
