@@ -14,7 +14,8 @@
      cell of that dimension is a neighbour.
    - In a dimension that is not periodic, positions outside [lo, hi] fall in the edge cells.
    - At most max_cells cells (cells are widened): memory stays in proportion to the points.
-   - Points are numbered from 0 in the order of insert(); positions must be finite.
+   - Points are numbered from 0 in the order of insert(). A non-finite position (NaN, inf) is
+     put in some cell, so that nothing is undefined; it is within reach of no point.
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_CELL_GRID_H
