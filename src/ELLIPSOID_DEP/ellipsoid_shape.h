@@ -33,15 +33,18 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Mat4 = Eigen::Matrix4d;
 
+// The members in the order a continuing contact reads them (bounding spheres, cached plane,
+// Newton iteration, curvature): they share the first cache lines; form (cold starts, the
+// Wang test) comes last.
 struct Ellipsoid {
   Vec3 center;
-  Mat3 rotation;             // body -> box; columns are the body axes in box coordinates
-  Vec3 semi_axes;            // along the body axes, any order, all > 0
-  Mat3 form;                 // Q = R diag(1/a^2) R^T  (the paper's A)
-  Mat3 inverse_form;         // M = R diag(a^2) R^T  (support function)
   double bounding_radius;    // largest semi-axis
   bool sphere;               // all semi-axes equal to round-off: closed-form path
   bool finite = false;       // every entry finite and semi-axes > 0 (checked once, here)
+  Mat3 inverse_form;         // M = R diag(a^2) R^T  (support function)
+  Mat3 rotation;             // body -> box; columns are the body axes in box coordinates
+  Vec3 semi_axes;            // along the body axes, any order, all > 0
+  Mat3 form;                 // Q = R diag(1/a^2) R^T  (the paper's A)
 
   // the paper's 4x4 homogeneous matrix: X^T H X = 0 on the surface, X = (x,1)
   Mat4 homogeneous() const;

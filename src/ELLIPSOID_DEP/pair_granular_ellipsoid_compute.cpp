@@ -80,6 +80,24 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
 }
 
 namespace {
+constexpr int PREFETCH_AHEAD = 4;
+
+// every cache line of n bytes from p
+inline void prefetch_bytes(const void *p, std::size_t n)
+{
+#if defined(__GNUC__)
+  const char *c = static_cast<const char *>(p);
+  for (std::size_t offset = 0; offset < n; offset += 64) __builtin_prefetch(c + offset);
+  __builtin_prefetch(c + n - 1);
+#endif
+}
+
+inline void prefetch_candidate(const double *history, int stride, const EllipsoidState *state)
+{
+  prefetch_bytes(history, stride * sizeof(double));
+  prefetch_bytes(state, sizeof(EllipsoidState));
+}
+
 // A pair whose bounding spheres are apart (true): its cache and tangential history cleared,
 // not kept at the next list build, counted as a bounding reject. tangential_slots is a
 // local of the caller's: a member would be reloaded after every store through touch.
@@ -215,14 +233,17 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       const int j = jlist[jj] & NEIGHMASK;
       double *history = first_history + stride * jj;
       // the candidates' history rows and states are read with gaps, which the hardware
-      // prefetcher does not follow as it followed the sweep over every neighbour
-#if defined(__GNUC__)
-      if (k + 1 < ncandidates) {
-        const int next = first_candidate[k + 1];
-        __builtin_prefetch(first_history + stride * next);
-        __builtin_prefetch(&state[jlist[next] & NEIGHMASK]);
+      // prefetcher does not follow as it followed the sweep over every neighbour: every
+      // cache line of them is asked for PREFETCH_AHEAD candidates ahead
+      if (k == 0)
+        for (int a = 1; a < PREFETCH_AHEAD && a < ncandidates; a++)
+          prefetch_candidate(first_history + stride * first_candidate[a], stride,
+                             &state[jlist[first_candidate[a]] & NEIGHMASK]);
+      if (k + PREFETCH_AHEAD < ncandidates) {
+        const int ahead = first_candidate[k + PREFETCH_AHEAD];
+        prefetch_candidate(first_history + stride * ahead, stride,
+                           &state[jlist[ahead] & NEIGHMASK]);
       }
-#endif
       // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
       if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
                           tangential_slots, counters))
