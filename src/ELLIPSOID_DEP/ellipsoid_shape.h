@@ -33,9 +33,8 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Mat4 = Eigen::Matrix4d;
 
-// The members in the order a continuing contact reads them (bounding spheres, cached plane,
-// Newton iteration, curvature): they share the first cache lines; form (cold starts, the
-// Wang test) comes last.
+// Centre and bounding radius first (the bounding test reads them for every candidate pair),
+// then inverse_form (cached plane, Newton iteration); form (cold starts, the Wang test) last.
 struct Ellipsoid {
   Vec3 center;
   double bounding_radius;    // largest semi-axis

@@ -82,7 +82,7 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
 namespace {
 constexpr int PREFETCH_AHEAD = 4;
 
-// every cache line of n bytes from p
+// every cache line of n > 0 bytes from p
 inline void prefetch_bytes(const void *p, std::size_t n)
 {
 #if defined(__GNUC__)
