@@ -82,14 +82,19 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
 namespace {
 constexpr int PREFETCH_AHEAD = 4;
 
+inline void prefetch_line(const void *p)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(p);
+#endif
+}
+
 // every cache line of n > 0 bytes from p
 inline void prefetch_bytes(const void *p, std::size_t n)
 {
-#if defined(__GNUC__)
   const char *c = static_cast<const char *>(p);
-  for (std::size_t offset = 0; offset < n; offset += 64) __builtin_prefetch(c + offset);
-  __builtin_prefetch(c + n - 1);
-#endif
+  for (std::size_t offset = 0; offset < n; offset += 64) prefetch_line(c + offset);
+  prefetch_line(c + n - 1);
 }
 
 inline void prefetch_candidate(const double *history, int stride, const EllipsoidState *state)
@@ -219,6 +224,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
 
   const int *const candidates = candidate_jj.data();
+  const bool gaps = set_aside > 0;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -232,17 +238,24 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       const int jj = first_candidate[k];
       const int j = jlist[jj] & NEIGHMASK;
       double *history = first_history + stride * jj;
-      // the candidates' history rows and states are read with gaps, which the hardware
-      // prefetcher does not follow as it followed the sweep over every neighbour: every
-      // cache line of them is asked for PREFETCH_AHEAD candidates ahead
-      if (k == 0)
-        for (int a = 1; a < PREFETCH_AHEAD && a < ncandidates; a++)
-          prefetch_candidate(first_history + stride * first_candidate[a], stride,
-                             &state[jlist[first_candidate[a]] & NEIGHMASK]);
-      if (k + PREFETCH_AHEAD < ncandidates) {
-        const int ahead = first_candidate[k + PREFETCH_AHEAD];
-        prefetch_candidate(first_history + stride * ahead, stride,
-                           &state[jlist[ahead] & NEIGHMASK]);
+      // with pairs set aside the candidates' history rows and states are read with gaps,
+      // which the hardware prefetcher does not follow as it follows the sweep over every
+      // neighbour: then every cache line of them is asked for PREFETCH_AHEAD candidates
+      // ahead; without gaps the first lines of the next one
+      if (gaps) {
+        if (k == 0)
+          for (int a = 1; a < PREFETCH_AHEAD && a < ncandidates; a++)
+            prefetch_candidate(first_history + stride * first_candidate[a], stride,
+                               &state[jlist[first_candidate[a]] & NEIGHMASK]);
+        if (k + PREFETCH_AHEAD < ncandidates) {
+          const int ahead = first_candidate[k + PREFETCH_AHEAD];
+          prefetch_candidate(first_history + stride * ahead, stride,
+                             &state[jlist[ahead] & NEIGHMASK]);
+        }
+      } else if (k + 1 < ncandidates) {
+        const int next = first_candidate[k + 1];
+        prefetch_line(first_history + stride * next);
+        prefetch_line(&state[jlist[next] & NEIGHMASK]);
       }
       // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
       if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
