@@ -11,12 +11,19 @@
                           (zero at the first evaluation of a contact); the next iteration
                           starts from n_k + (n_k - n_(k-1)), which is one order closer to
                           n_(k+1) than n_k for a smooth motion, and needs fewer iterations
-     TANGENTIAL     7-9   tangential displacement (only for force laws with a history)
-   evaluate_pair reads and writes slots 0-6 (PIPELINE_SIZE); the force law owns 7-9. Slot 4
-   belongs to the plane or to the contact, as the state says.
+     SEPARATION     7-9   contact state: c_B - c_A at the contact's last evaluation, the
+                          pair's fingerprint. An engine keys the history by the partner's ID,
+                          so a row can reach another pair (IDs renumbered) or another periodic
+                          image of the same partner (a box narrower than the reach); a contact
+                          whose centres moved more than belongs_to()'s tolerance since is
+                          not this pair's
+     TANGENTIAL     10-12 tangential displacement (only for force laws with a history)
+   evaluate_pair reads and writes slots 0-9 (PIPELINE_SIZE); the force law owns 10-12, which
+   evaluate_pair only clears, with the rest, when a row is not the pair's. Slot 4 belongs to
+   the plane or to the contact, as the state says.
 
    The i/j swap rule: every slot changes sign when A and B are swapped (the state by
-   convention, n -> -n, u -> -u, s -> -s), so the swapped pair's history is the negated copy
+   convention, n -> -n, u -> -u, s -> -s, dc -> -dc), so the swapped pair's history is the negated copy
    (swapped()). That is the default transfer of LAMMPS's fix NEIGH_HISTORY and LIGGGHTS's
    "newtonflag 1" history values, so neither engine needs a custom transfer. Storing the plane
    relative to the two centres (u, not an absolute offset) also makes it independent of
@@ -28,12 +35,16 @@
 
 #include "ellipsoid_wang.h"
 
+#include <algorithm>
+
 namespace EllipsoidDep {
 
 class PairCache {
  public:
-  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, NORMAL_STEP = 4, TANGENTIAL = 7;
-  static constexpr int PIPELINE_SIZE = 7;      // slots evaluate_pair uses
+  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, NORMAL_STEP = 4, SEPARATION = 7,
+                       TANGENTIAL = 10;
+  static constexpr int LAYOUT_VERSION = 3;    // changes with the layout (restart files)
+  static constexpr int PIPELINE_SIZE = 10;     // slots evaluate_pair uses
   static constexpr int TANGENTIAL_SIZE = 3;    // slots of the tangential displacement
   static constexpr int size(bool tangential_history)
   {
@@ -103,14 +114,32 @@ class PairCache {
     }
     set_plane(n, (offset - n.dot(ca)) / nd - 0.5);
   }
-  // a contact normal and its change since the previous evaluation (zero for a new contact)
-  void store_contact(const Vec3 &n, const Vec3 &step = Vec3::Zero())
+  // a contact normal, its change since the previous evaluation (zero for a new contact) and
+  // the centres' separation dc = c_B - c_A it was found at
+  void store_contact(const Vec3 &n, const Vec3 &dc, const Vec3 &step = Vec3::Zero())
   {
     v[STATE] = static_cast<double>(static_cast<int>(State::Contact));
     for (int k = 0; k < 3; ++k) {
       v[NORMAL + k] = n[k];
       v[NORMAL_STEP + k] = step[k];
+      v[SEPARATION + k] = dc[k];
     }
+  }
+  // true when the stored contact was found for centres separated by dc to within tolerance:
+  // the same pair and periodic image one evaluation later (any NaN makes it false)
+  bool belongs_to(const Vec3 &dc, double tolerance) const
+  {
+    const Vec3 stored(v[SEPARATION], v[SEPARATION + 1], v[SEPARATION + 2]);
+    return (dc - stored).squaredNorm() <= tolerance * tolerance;
+  }
+  // belongs_to()'s tolerance for bodies a and b: half the smallest semi-axis of either. A
+  // contact's centres move far less between two evaluations (its overlap changes by less);
+  // two images of one partner are a box length apart, at least twice a semi-axis of the
+  // partner, and two other atoms' centres are further apart than a semi-axis unless they
+  // overlap by more than that
+  static double identity_tolerance(const Ellipsoid &a, const Ellipsoid &b)
+  {
+    return 0.5 * std::min(a.semi_axes.minCoeff(), b.semi_axes.minCoeff());
   }
   // where the next iteration of a continuing contact starts (not normalised): the stored
   // normal moved on by its last step, unless the step is not that of a smooth motion
@@ -125,6 +154,13 @@ class PairCache {
   void clear()
   {
     for (int k = 0; k < PIPELINE_SIZE; ++k) v[k] = 0.0;
+  }
+  // forget everything: a row made for another pair or image (tangential: the row has the
+  // force law's slots)
+  void clear_row(bool tangential)
+  {
+    clear();
+    if (tangential) clear_tangential();
   }
 
   double *tangential() { return v + TANGENTIAL; }
@@ -144,7 +180,9 @@ class PairCache {
     v[NORMAL + 1] = n[1];
     v[NORMAL + 2] = n[2];
     v[PLANE_U] = u;
-    v[NORMAL_STEP + 1] = v[NORMAL_STEP + 2] = 0.0;    // the rest of the contact's step
+    // the rest of the contact's step and its separation
+    v[NORMAL_STEP + 1] = v[NORMAL_STEP + 2] = 0.0;
+    v[SEPARATION] = v[SEPARATION + 1] = v[SEPARATION + 2] = 0.0;
   }
 };
 

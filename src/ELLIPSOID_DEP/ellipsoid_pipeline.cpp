@@ -24,6 +24,7 @@ namespace {
     g.overlap = overlap;
     return g;
   }
+
 }    // namespace
 
 ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
@@ -41,7 +42,16 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
     return decided(Status::Separated, dc / dist, reach - dist);
   ++counters.pairs;
   PairCache history(cache);
-  const PairCache::State state = history.state();
+  PairCache::State state = history.state();
+  // a contact row of another pair or image (IDs renumbered, two images of one partner) is
+  // not this pair's: it is forgotten and the pair evaluated as new. A plane needs no such
+  // check: it is tested, and a plane that separates proves it whatever pair it was made for.
+  if (state == PairCache::State::Contact &&
+      !history.belongs_to(dc, PairCache::identity_tolerance(a, b))) {
+    ++counters.foreign_histories;
+    history.clear_row(settings.tangential_slots);
+    state = PairCache::State::Empty;
+  }
   Vec3 cached_n;
   const bool have_n = history.usable_normal(cached_n);
   if (state == PairCache::State::Plane && have_n && settings.use_planes) {
@@ -83,10 +93,26 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
     }
   }
   // ellipsoid_contact without its validity checks, made above (two spheres: its closed form)
-  ContactGeometry g = a.sphere && b.sphere
+  const bool spheres = a.sphere && b.sphere;
+  ContactGeometry g = spheres
       ? sphere_contact(a, b)
       : valid_ellipsoid_contact(a, b, settings.contact, have_n ? &start_n : nullptr);
   counters.iterations += g.iterations;
+  // a warm start can lie in the basin of a spurious local minimum of d, far deeper than the
+  // contact (a start in the wrong hemisphere: about a body's length); a deep warm result is
+  // checked against the cold start, and the shallower minimum is the contact (or the gap)
+  bool replaced = false;
+  if (have_n && !spheres && g.status != Status::Degenerate &&
+      g.overlap > CHECKED_OVERLAP_FRACTION *
+              std::min(a.semi_axes.minCoeff(), b.semi_axes.minCoeff())) {
+    ContactGeometry cold = valid_ellipsoid_contact(a, b, settings.contact, nullptr);
+    counters.iterations += cold.iterations;
+    if (cold.status != Status::Degenerate && cold.overlap < g.overlap) {
+      ++counters.spurious_minima;
+      g = cold;
+      replaced = true;
+    }
+  }
   if (g.corrected) ++counters.corrections;
   if (g.status == Status::Degenerate) {
     ++counters.degenerate;
@@ -103,8 +129,8 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
   if (g.status == Status::NotConverged) ++counters.not_converged;
   // only an iterated normal moves the next start on: a fast-mode contact accepted at its
   // (extrapolated) start would otherwise extrapolate its own extrapolation, and turn on
-  const bool iterated = continuing_contact && g.corrected;
-  history.store_contact(g.normal, iterated ? Vec3(g.normal - cached_n) : Vec3::Zero());
+  const bool iterated = continuing_contact && g.corrected && !replaced;
+  history.store_contact(g.normal, dc, iterated ? Vec3(g.normal - cached_n) : Vec3::Zero());
   return g;
 }
 

@@ -9,6 +9,12 @@
      ellipsoid_pair_cache.h for the layout and the swap rule).
    - Every evaluation ends in exactly one of: bounding reject, plane hit, Wang test (or the
      iteration directly when use_wang is off), continued contact.
+   - A contact history is used only by the pair and periodic image it was made for
+     (PairCache::belongs_to); another pair's row is cleared, tangential slots included, and
+     counted (foreign_histories): the pair is then evaluated as new.
+   - A warm-started result deeper than CHECKED_OVERLAP_FRACTION of the smaller smallest
+     semi-axis is evaluated again from the cold start; the shallower of the two minima of d
+     is the result (the replacement counted, spurious_minima).
 
    Degenerate cases
    - Invalid bodies or a non-finite centre distance: Degenerate, counted, cache cleared.
@@ -27,7 +33,15 @@ struct PipelineSettings {
   ContactSettings contact;
   bool use_planes = true;    // cache separating planes of disjoint pairs
   bool use_wang = true;      // false: go straight to the contact iteration
+  bool tangential_slots = false;    // the history rows hold the force law's tangential
+                                    // slots after the pipeline's (cleared with a foreign row)
 };
+
+// A warm-started result deeper than this fraction of the smaller body's smallest semi-axis
+// (far beyond any overlap a force law resolves) is checked against a cold start: a warm start
+// can reach a spurious local minimum of d, which would make a false contact (of a disjoint
+// pair) or a far too deep one
+inline constexpr double CHECKED_OVERLAP_FRACTION = 0.5;
 
 struct PipelineCounters {
   long long pairs = 0;               // pairs evaluated
@@ -41,6 +55,8 @@ struct PipelineCounters {
   long long degenerate = 0;          // input that could not be handled
   long long continued = 0;           // contacts of the previous step re-evaluated without Wang
   long long wang_separated = 0;      // Wang said disjoint and a plane was built
+  long long foreign_histories = 0;   // contact histories made for another pair or image
+  long long spurious_minima = 0;     // deep warm-started results a cold start beat
   void add(const PipelineCounters &o);
 };
 
@@ -63,6 +79,8 @@ inline constexpr CounterField PIPELINE_COUNTERS[] = {
     {"degenerate", "degenerate", &PipelineCounters::degenerate},
     {"continued", "continued contacts", &PipelineCounters::continued},
     {"wang_separated", "Wang separations", &PipelineCounters::wang_separated},
+    {"foreign_histories", "foreign histories", &PipelineCounters::foreign_histories},
+    {"spurious_minima", "spurious minima", &PipelineCounters::spurious_minima},
 };
 inline constexpr int NUM_PIPELINE_COUNTERS =
     static_cast<int>(sizeof(PIPELINE_COUNTERS) / sizeof(PIPELINE_COUNTERS[0]));

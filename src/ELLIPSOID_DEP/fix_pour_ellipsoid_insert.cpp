@@ -179,7 +179,9 @@ CellGrid FixPourEllipsoid::near_cells(const std::vector<Ellipsoid> &near, int nn
 }
 
 // does the candidate overlap (or touch) a near particle? exact test of the kernel on those of
-// its cells; the answer does not depend on the order (wang_classify has no side effect)
+// its cells, against every periodic image of it within the bounding spheres' reach (in a box
+// narrower than twice the reach, more than the nearest one); the answer does not depend on
+// the order (wang_classify has no side effect)
 bool FixPourEllipsoid::overlaps(const Ellipsoid &cand, const std::vector<Ellipsoid> &near,
                                 const CellGrid &cells) const
 {
@@ -189,10 +191,26 @@ bool FixPourEllipsoid::overlaps(const Ellipsoid &cand, const std::vector<Ellipso
                    cand.center[2] - other.center[2]};
     domain->minimum_image(THIS_FILE, __LINE__, d);
     const double reach = cand.bounding_radius + other.bounding_radius;
-    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > reach * reach) return false;
-    Ellipsoid image = other;    // the periodic image next to the candidate
-    image.center = cand.center - Vec3(d[0], d[1], d[2]);
-    return wang_classify(image, cand, contact_settings) != Status::Separated;
+    // the image shifts (in periods) that keep each component within reach
+    int first[3], last[3];
+    for (int dim = 0; dim < 3; dim++) {
+      first[dim] = last[dim] = 0;
+      if (!domain->periodicity[dim]) continue;
+      const double period = domain->prd[dim];
+      first[dim] = static_cast<int>(std::ceil((-reach - d[dim]) / period));
+      last[dim] = static_cast<int>(std::floor((reach - d[dim]) / period));
+    }
+    Ellipsoid image = other;
+    for (int sx = first[0]; sx <= last[0]; sx++)
+      for (int sy = first[1]; sy <= last[1]; sy++)
+        for (int sz = first[2]; sz <= last[2]; sz++) {
+          const Vec3 shifted(d[0] + sx * domain->prd[0], d[1] + sy * domain->prd[1],
+                             d[2] + sz * domain->prd[2]);
+          if (shifted.squaredNorm() > reach * reach) continue;
+          image.center = cand.center - shifted;    // this image of the near particle
+          if (wang_classify(image, cand, contact_settings) != Status::Separated) return true;
+        }
+    return false;
   });
 }
 

@@ -34,7 +34,7 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 // the contacts start afresh.
 static std::string history_fix_id(int size)
 {
-  return fmt::format("NEIGH_HISTORY_GRANULAR_ELLIPSOID_{}", size);
+  return fmt::format("NEIGH_HISTORY_GRANULAR_ELLIPSOID_V{}_{}", PairCache::LAYOUT_VERSION, size);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -43,7 +43,7 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
     freeze_group_bit(0), candidates_step(-1), candidates_build_count(-1), set_aside(0),
-    respa_run(false), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
+    respa_run(false), restart_history_layout(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
     damping_time(0.0)
 {
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default
@@ -236,16 +236,18 @@ void PairGranularEllipsoid::init_style()
       any_history |= law_of_pair(i, j, law, refusal) && law.history_size() > 0;
     }
   size_history = PairCache::size(any_history);
+  pipeline.tangential_slots = any_history;
   // the history fix reads its restart values with its own size: a different size would
   // misread every pair
-  const bool restart_layout_differs = restart_history_size > 0 &&
-      restart_history_size != PairCache::size(true) && restart_history_size != PairCache::size(false);
+  const bool restart_layout_differs =
+      restart_history_size > 0 && restart_history_layout != PairCache::LAYOUT_VERSION;
   if (!fix_history && restart_layout_differs)
     error->all(FLERR,
                "Pair granular/ellipsoid: the restart file holds {} history values per pair, a "
-               "layout of another version of ELLIPSOID_DEP (this one keeps {} or {}); continue "
-               "from write_data/read_data (which starts every contact afresh)",
-               restart_history_size, PairCache::size(false), PairCache::size(true));
+               "layout of another version of ELLIPSOID_DEP (this one keeps {} or {}, layout "
+               "{}); continue from write_data/read_data (which starts every contact afresh)",
+               restart_history_size, PairCache::size(false), PairCache::size(true),
+               PairCache::LAYOUT_VERSION);
   if (!fix_history && restart_history_size > 0 && restart_history_size != size_history)
     error->all(FLERR,
                "Pair granular/ellipsoid: the restart file holds {} history values per pair, "

@@ -106,9 +106,15 @@ class PairGranularEllipsoid : public Pair {
   int add_law(const EllipsoidDep::ForceLaw &law);
   bool law_of_pair(int i, int j, EllipsoidDep::ForceLaw &law, std::string &refusal) const;
 
-  // per-pair history size of the run that wrote the restart file this pair was read from
-  // (0: none read, or no history written)
-  int restart_history_size;
+  // per-pair history layout (PairCache::LAYOUT_VERSION; 0 for layouts 1 and 2, whose files
+  // hold the bare size) and size of the run that wrote the restart file this pair was read
+  // from (size 0: none read, or no history written); one int in the file, history_record()
+  static constexpr int HISTORY_RECORD_BASE = 100;
+  static int history_record(int size)
+  {
+    return EllipsoidDep::PairCache::LAYOUT_VERSION * HISTORY_RECORD_BASE + size;
+  }
+  int restart_history_layout, restart_history_size;
   double impact_velocity;    // pair_style impact_velocity; 0: twice the largest atom speed
   // shortest Hertz contact and damping times over the type pairs (granular_contact_time.h);
   // 0: undefined (no moving atoms; for the damping time also an undamped law)

@@ -1,7 +1,8 @@
 /* ----------------------------------------------------------------------
    ELLIPSOID_DEP: pair_style granular/ellipsoid, its restart records (see
    doc/pair_granular_ellipsoid.rst): the solver settings, the force laws as their tables pack
-   them, the type-pair assignment and the history size of the run that wrote the file.
+   them, the type-pair assignment and the history layout and size of the run that wrote the
+   file (one int, history_record(): files of layouts 1 and 2 hold the bare size).
 ------------------------------------------------------------------------- */
 
 #include "pair_granular_ellipsoid.h"
@@ -66,7 +67,7 @@ void PairGranularEllipsoid::write_restart(FILE *fp)
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
       fwrite(&law_index[i][j], sizeof(int), 1, fp);
     }
-  const int history = fix_history ? fix_history->get_dnum() : 0;
+  const int history = history_record(fix_history ? fix_history->get_dnum() : 0);
   fwrite(&history, sizeof(int), 1, fp);
 }
 
@@ -99,6 +100,9 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
       setflag[i][j] = pair[0];
       law_index[i][j] = law_index[j][i] = pair[1];
     }
-  if (me == 0) utils::sfread(FLERR, &restart_history_size, sizeof(int), 1, fp, nullptr, error);
-  MPI_Bcast(&restart_history_size, 1, MPI_INT, 0, world);
+  int history = 0;
+  if (me == 0) utils::sfread(FLERR, &history, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&history, 1, MPI_INT, 0, world);
+  restart_history_layout = history / HISTORY_RECORD_BASE;
+  restart_history_size = history % HISTORY_RECORD_BASE;
 }

@@ -161,20 +161,28 @@ def test_restart_with_the_same_history_size_continues(tmp_path):
                  f"pair_coeff * * hertz {KN} {K} tangential history 2e3 0.3\nrun 0\n")
 
 
-# written with the plugin of f74bd3f, whose history had 8 values per pair (data/in.old_layout_8:
-# three ellipsoids in a row, two contacts with a tangential history)
-OLD_LAYOUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "old_layout_8.restart")
+# written with the plugins of f74bd3f and 11dc32b, whose histories had 8 and 10 values per
+# pair (data/in.old_layout_8, data/in.old_layout_10: three ellipsoids in a row, two contacts
+# with a tangential history). 10 is also the size of this layout without a tangential history.
+def old_layout(size):
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "data",
+                        f"old_layout_{size}.restart")
+
+
+OLD_FIX_IDS = {8: "NEIGH_HISTORY_GRANULAR_ELLIPSOID", 10: "NEIGH_HISTORY_GRANULAR_ELLIPSOID_10"}
 OLD_PAIR = "pair_style granular/ellipsoid\npair_coeff * * hertz 1.0e4 20.0 tangential history 2.0e3 0.5\n"
+OLD_PAIR_NO_HISTORY = "pair_style granular/ellipsoid\npair_coeff * * hertz 1.0e4 20.0\n"
 
 
+@pytest.mark.parametrize("size", [8, 10])
 @pytest.mark.parametrize("commands", ["", OLD_PAIR])    # pair_style again: the same instance
-def test_restart_of_the_old_history_layout_is_refused(commands):
+def test_restart_of_the_old_history_layout_is_refused(commands, size):
     lmp = new_lammps()
     try:
-        with pytest.raises(Exception, match=r"the restart file holds 8 history values per pair, "
-                                            r"a layout of another version"):
-            lmp.commands_string(f"read_restart {OLD_LAYOUT}\ncomm_modify vel yes\n" + commands +
-                                "run 0\n")
+        with pytest.raises(Exception, match=rf"the restart file holds {size} history values per "
+                                            r"pair, a layout of another version"):
+            lmp.commands_string(f"read_restart {old_layout(size)}\ncomm_modify vel yes\n" +
+                                commands + "run 0\n")
     finally:
         lmp.close()
 
@@ -185,26 +193,28 @@ def forces_by_id(lmp):
     return lmp.numpy.extract_atom("f")[:n][np.argsort(ids)].copy()
 
 
-def test_pair_style_replaced_after_an_old_restart_starts_the_contacts_afresh(tmp_path):
+@pytest.mark.parametrize("size, pair", [(8, OLD_PAIR), (10, OLD_PAIR), (10, OLD_PAIR_NO_HISTORY)])
+def test_pair_style_replaced_after_an_old_restart_starts_the_contacts_afresh(tmp_path, size,
+                                                                            pair):
     """A pair style replaced after read_restart (pair_style none, then granular/ellipsoid: a
     new instance, without the file's pair record) cannot see the old layout; the history
-    fix's ID names its size, so the file's 8 values per pair stay unused (LAMMPS logs them)
-    instead of being read as 10: the forces are those of the same positions read from a data
-    file, where every contact starts afresh."""
+    fix's ID names its layout and size, so the file's 8 or 10 values per pair stay unused
+    (LAMMPS logs them) instead of being read as this layout's 13, or as its 10 without a
+    tangential history: the forces are those of the same positions read from a data file,
+    where every contact starts afresh."""
     data = tmp_path / "old.data"
     lmp = h.new_lammps(tmp_path, "again")
-    lmp.commands_string(f"read_restart {OLD_LAYOUT}\ncomm_modify vel yes\npair_style none\n" +
-                        OLD_PAIR +
-                        "fix i all nve/ellipsoid\nrun 0\n")
+    lmp.commands_string(f"read_restart {old_layout(size)}\ncomm_modify vel yes\n"
+                        "pair_style none\n" + pair + "fix i all nve/ellipsoid\nrun 0\n")
     again = forces_by_id(lmp)
     log = h.read_log(lmp)
     lmp.command(f"write_data {data}")
     lmp.close()
     assert re.search(r"Unused restart file peratom fix info:\n\s+fix style: NEIGH_HISTORY, "
-                     r"fix ID: NEIGH_HISTORY_GRANULAR_ELLIPSOID\n", log), log[-2000:]
+                     rf"fix ID: {OLD_FIX_IDS[size]}\n", log), log[-2000:]
     lmp = h.new_lammps(tmp_path, "data")
     lmp.commands_string(f"atom_style ellipsoid\ncomm_modify vel yes\nread_data {data}\n" +
-                        OLD_PAIR + "fix i all nve/ellipsoid\nrun 0\n")
+                        pair + "fix i all nve/ellipsoid\nrun 0\n")
     fresh = forces_by_id(lmp)
     lmp.close()
     assert np.count_nonzero(np.abs(fresh).sum(axis=1)) == 3    # both contacts

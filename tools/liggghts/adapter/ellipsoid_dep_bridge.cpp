@@ -69,9 +69,11 @@ const char *cache_slot_name(int k)
   static const char *const names[CACHE_SIZE] = {"ellipsoid_dep_state", "ellipsoid_dep_nx",
                                                 "ellipsoid_dep_ny", "ellipsoid_dep_nz",
                                                 "ellipsoid_dep_u_or_stepx", "ellipsoid_dep_stepy",
-                                                "ellipsoid_dep_stepz"};
+                                                "ellipsoid_dep_stepz", "ellipsoid_dep_dcx",
+                                                "ellipsoid_dep_dcy", "ellipsoid_dep_dcz"};
   static_assert(PairCache::STATE == 0 && PairCache::NORMAL == 1 && PairCache::PLANE_U == 4 &&
-                    PairCache::NORMAL_STEP == 4 && PairCache::PIPELINE_SIZE == 7,
+                    PairCache::NORMAL_STEP == 4 && PairCache::SEPARATION == 7 &&
+                    PairCache::PIPELINE_SIZE == 10,
                 "slot names follow the PairCache layout");
   return names[k];
 }

@@ -16,7 +16,7 @@ namespace EllipsoidDepLiggghts {
 // doubles of per-pair cache (== EllipsoidDep::PairCache::PIPELINE_SIZE, checked in the .cpp).
 // Every entry changes sign when i and j are swapped: LIGGGHTS's history "newtonflag 1" is exact
 // for all.
-const int CACHE_SIZE = 7;
+const int CACHE_SIZE = 10;
 // name of cache slot k < CACHE_SIZE (for LIGGGHTS's history registry)
 const char *cache_slot_name(int k);
 // true while the cache keeps a separating plane or a contact normal (keep the pair's history)

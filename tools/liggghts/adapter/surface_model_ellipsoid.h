@@ -9,7 +9,7 @@
    the kernel's ContactGeometry back into SurfacesIntersectData (en, deltan, contact_point,
    reff), which LIGGGHTS's normal / tangential / rolling / cohesion models then consume.
 
-   Per-pair cache: the kernel's PairCache::PIPELINE_SIZE (7) doubles live in LIGGGHTS's contact history
+   Per-pair cache: the kernel's PairCache::PIPELINE_SIZE (10) doubles live in LIGGGHTS's contact history
    (newtonflag 1: every entry changes sign under i <-> j). The pair keeps the
    CONTACT_SURFACE_MODEL contact flag while the cache holds something, so a cached separating
    plane survives re-neighbouring (fix contacthistory keeps only flagged pairs).
