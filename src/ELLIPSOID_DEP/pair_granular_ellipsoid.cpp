@@ -217,12 +217,7 @@ void PairGranularEllipsoid::init_style()
     error->all(FLERR,
                "Pair granular/ellipsoid requires ghost atoms store velocity: "
                "use comm_modify vel yes");
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->ellipsoid[i] < 0)
-      error->one(FLERR,
-                 "Pair granular/ellipsoid requires every atom to be an ellipsoid "
-                 "(atom {} has no shape: use set ... shape)",
-                 atom->tag[i]);
+  EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid", atom->nlocal);
 
   // A plain half list with the bounding-sphere cutoff (atom_style ellipsoid has no radius).
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
