@@ -110,3 +110,9 @@ def test_shapeless_atom_added_during_a_run():
     finally:
         lmp.close()
 
+
+def test_only_one_instance_under_hybrid():
+    """a second instance replaced the first one's history fix: 'could not be found' at run 0,
+    then an abort when LAMMPS was closed"""
+    expect_error("pair_style hybrid granular/ellipsoid granular/ellipsoid\n",
+                 "Pair granular/ellipsoid can be used only once")
