@@ -22,10 +22,7 @@ void FixNVEEllipsoid::init()
   if (!atom->style_match("ellipsoid"))
     error->all(FLERR, "Fix nve/ellipsoid requires atom style ellipsoid");
   EllipsoidAtoms::require_granular_style(lmp, "Fix nve/ellipsoid");
-  for (int i = 0; i < atom->nlocal; i++)
-    if ((atom->mask[i] & groupbit) && atom->ellipsoid[i] < 0)
-      error->one(FLERR, "Fix nve/ellipsoid requires extended particles: atom {} has no shape",
-                 atom->tag[i]);
+  EllipsoidAtoms(atom).require_shapes(lmp, "Fix nve/ellipsoid", atom->nlocal, groupbit);
   FixNVE::init();
 }
 
@@ -47,9 +44,7 @@ void FixNVEEllipsoid::initial_integrate(int /*vflag*/)
       angmom[i][d] += dtf * torque[i][d];
     }
     // atoms join the group mid-run (fix pour, dynamic groups): each needs a shape
-    if (!atoms.has_shape(i))
-      error->one(FLERR, "Fix nve/ellipsoid requires extended particles: atom {} has no shape",
-                 atom->tag[i]);
+    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix nve/ellipsoid", i, groupbit);
     // a sphere's orientation is not read by this package's styles; a blocky superellipsoid's
     // is read by others
     if (atoms.sphere(i) && !atoms.blocky(i)) continue;

@@ -232,7 +232,8 @@ void FixWallGranEllipsoid::setup(int vflag)
   const int nlocal = atom->nlocal;
   double counts[2] = {0.0, 0.0};
   for (int i = 0; i < nlocal; i++) {
-    if (!(atom->mask[i] & groupbit) || !atoms.has_shape(i)) continue;
+    if (!(atom->mask[i] & groupbit)) continue;
+    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix wall/gran/ellipsoid", i, groupbit);
     const Ellipsoid e = atoms.ellipsoid(i);
     const double thin = e.semi_axes.minCoeff();
     for (const Wall &w : walls) {
@@ -285,7 +286,9 @@ void FixWallGranEllipsoid::wall_forces()
   const int nwalls = static_cast<int>(walls.size());
 
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit) || !atoms.has_shape(i)) continue;
+    if (!(mask[i] & groupbit)) continue;
+    // an atom inserted during the run without a shape (fix deposit): the walls would let it go
+    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix wall/gran/ellipsoid", i, groupbit);
     const double bound = atoms.bounding_radius(i);
     bool built = false, moving = false;
     EllipsoidState state;

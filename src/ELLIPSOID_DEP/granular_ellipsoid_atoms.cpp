@@ -29,6 +29,24 @@ bool EllipsoidAtoms::has_shape(int i) const
   return atom->ellipsoid[i] >= 0;
 }
 
+void EllipsoidAtoms::require_shapes(LAMMPS *lmp, const char *who, int n, int groupbit) const
+{
+  for (int i = 0; i < n; i++)
+    if ((groupbit == 0 || (atom->mask[i] & groupbit)) && !has_shape(i))
+      missing_shape(lmp, who, i, groupbit);
+}
+
+// error->one: only the rank holding the atom knows; it names the atom, which a reduction
+// would lose
+void EllipsoidAtoms::missing_shape(LAMMPS *lmp, const char *who, int i, int groupbit) const
+{
+  lmp->error->one(FLERR,
+                  "{} requires every atom{} to be an ellipsoid: atom {} has no shape (set ... "
+                  "shape; atoms inserted during a run need one too, as fix pour/ellipsoid "
+                  "gives them)",
+                  who, groupbit ? " of its group" : "", atom->tag[i]);
+}
+
 EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotation) const
 {
   // as MathExtra::mq_to_omega, with the rotation the shape was built from

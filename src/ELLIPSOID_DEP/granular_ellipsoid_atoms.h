@@ -42,6 +42,11 @@ class EllipsoidAtoms {
   // ERROR naming who ("Pair granular/ellipsoid") unless the atom style is ellipsoid with
   // per-atom mass, angular momentum and torque
   static void require_granular_style(LAMMPS *lmp, const char *who);
+  // ERROR naming who unless every atom in [0, n) (of the group of groupbit; 0: every atom)
+  // has a shape: n = nlocal, or nlocal + nghost where ghosts are read (a ghost's ID is its
+  // owner's). missing_shape() is the ERROR for atom i, for loops that check atoms themselves
+  void require_shapes(LAMMPS *lmp, const char *who, int n, int groupbit = 0) const;
+  [[noreturn]] void missing_shape(LAMMPS *lmp, const char *who, int i, int groupbit = 0) const;
 
   bool has_shape(int i) const;           // atom i carries ellipsoid bonus data
   const double *shape(int i) const;      // semi-axes along the body axes

@@ -13,11 +13,35 @@
 
 using namespace LAMMPS_NS;
 
+namespace {
+// The list holds granular/ellipsoid's contacts only. Under pair_style hybrid (any variant)
+// another sub-style that can make contacts would have its contacts silently left out: ERROR.
+// zero makes none; "none" is no sub-style. PairHybrid keeps its sub-styles protected, so
+// every registered style name is asked for with pair_match.
+void refuse_other_sub_styles(LAMMPS *lmp, const char *who)
+{
+  Force *force = lmp->force;
+  if (!utils::strmatch(force->pair_style, "^hybrid")) return;
+  for (const auto &style : *force->pair_map) {
+    const std::string &name = style.first;
+    if (name == "granular/ellipsoid" || name == "zero" || utils::strmatch(name, "^hybrid"))
+      continue;
+    if (force->pair_match(name, 1, 1))    // a sub-style (one or more times)
+      lmp->error->all(FLERR,
+                      "{} counts the contacts of pair granular/ellipsoid only, but pair_style {} "
+                      "also has sub-style {}, whose contacts it would miss (only zero may join "
+                      "granular/ellipsoid)",
+                      who, force->pair_style, name);
+  }
+}
+}    // namespace
+
 ContactList *ContactList::request(LAMMPS *lmp, const char *who)
 {
   auto *pair =
       dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
   if (!pair) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
+  refuse_other_sub_styles(lmp, who);
   ContactList &contacts = pair->contact_list();
   contacts.wanted = true;
   return &contacts;

@@ -31,7 +31,8 @@ class ContactList {
   };
 
   // For a compute's init(): the list of the pair style in use (ERROR naming who, e.g.
-  // "Compute contact/histo", when there is none), which records from now on.
+  // "Compute contact/histo", when there is none, or when pair_style hybrid has another
+  // sub-style than zero, whose contacts the list would miss), which records from now on.
   static ContactList *request(LAMMPS *lmp, const char *who);
   // For a compute's evaluation: the list, after an ERROR naming who unless it was requested
   // (init ran) and holds the contacts of the current step.

@@ -46,6 +46,12 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     respa_run(false), restart_history_layout(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
     damping_time(0.0)
 {
+  // the history fix's IDs are the style's: a second instance (pair_style hybrid listing it
+  // twice) would replace the first one's fix and fail at init and at deletion
+  if (modify->get_fix_by_id(HISTORY_DUMMY_ID))
+    error->all(FLERR,
+               "Pair granular/ellipsoid can be used only once (pair_style hybrid lists it "
+               "more than once)");
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default
   // transfer, which negates every value when i and j swap, exactly the PairCache swap rule.
   no_virial_fdotr_compute = 1;
@@ -217,12 +223,7 @@ void PairGranularEllipsoid::init_style()
     error->all(FLERR,
                "Pair granular/ellipsoid requires ghost atoms store velocity: "
                "use comm_modify vel yes");
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->ellipsoid[i] < 0)
-      error->one(FLERR,
-                 "Pair granular/ellipsoid requires every atom to be an ellipsoid "
-                 "(atom {} has no shape: use set ... shape)",
-                 atom->tag[i]);
+  EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid", atom->nlocal);
 
   // A plain half list with the bounding-sphere cutoff (atom_style ellipsoid has no radius).
   neighbor->add_request(this, NeighConst::REQ_HISTORY);

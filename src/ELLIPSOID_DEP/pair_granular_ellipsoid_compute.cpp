@@ -199,6 +199,11 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   history_update = update->setupflag == 0;
+  // atoms inserted during a run (fix deposit, ...) arrive with a neighbour list build; one
+  // without a shape would be read out of bounds by the candidates and the states below
+  if (neighbor->ago == 0)
+    EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid",
+                                        atom->nlocal + atom->nghost);
   const bool refresh = candidates_stale();
   if (refresh && neighbor->ago == 0 && builds_keep_skin())
     find_candidates();

@@ -84,6 +84,32 @@ pair_style granular/ellipsoid
 """
 
 
+def shapeless_deposit(pair=True):
+    """One ellipsoid on a wall; fix deposit adds plain atoms (no shape, the first, atom 2, at
+    step 1) that fix nve/asphere integrates without a check: under pair granular/ellipsoid and
+    the wall (pair=True), or the wall alone. Unchecked, the pair read outside its arrays, both
+    ignored the new atoms, and the run ended in lost atoms (issue 27, item 6)."""
+    return f"""
+units lj
+atom_style ellipsoid
+boundary p p f
+comm_modify vel yes
+region box block 0 6 0 6 0 12
+create_box 1 box
+create_atoms 1 single 3 3 0.5
+set atom 1 shape 1 0.8 0.6
+set atom 1 density 1.0
+{"pair_style granular/ellipsoid" if pair else ""}
+{"pair_coeff * * hertz 1e4 10" if pair else ""}
+fix g all gravity 1.0 vector 0 0 -1
+fix w all wall/gran/ellipsoid hertz 1e4 10 zplane 0 NULL
+region ins block 1 5 1 5 6 10
+fix d all deposit 3 1 100 4767 region ins near 1.0 vz -1 -1
+fix i all nve/asphere
+timestep 1e-3
+"""
+
+
 # A pour of MID_POUR_N triaxial ellipsoids (pair and wall with tangential history and rolling,
 # x and y periodic) inserted in batches every 1200 steps: at step MID_POUR_HALF some are still
 # to come and many touch; MID_POUR_REST more steps insert the rest.

@@ -10,16 +10,20 @@ Every configuration is placed by hand (run 0: no motion), so the expected values
 - many sphere pairs with isotropic random contact normals: flat P(theta) = 1/(4 pi) within
   5 standard errors per bin and fabric tensor I/3 within 5 standard errors;
 - stacks of slightly tilted flat oblate ellipsoids: contact normals peak at theta = 0, pi and
-  have their minimum at pi/2; their short axes are vertical and long axes horizontal.
+  have their minimum at pi/2; their short axes are vertical and long axes horizontal;
+- under pair_style hybrid: an ERROR at init when another sub-style (not zero) could make
+  contacts the computes cannot see; with zero and none the contacts are counted.
 """
 import math
 import os
+import re
 import tempfile
 
 import numpy as np
 import pytest
 
 import geometry
+from conftest import new_lammps
 from placed_scenes import (SEMI, SPACING, array, assert_needs_ellipsoids, build_system,
                            lattice, mc_slab_volume, network, oblate_stacks, random_pairs,
                            section_area, vector)
@@ -357,3 +361,73 @@ def test_stale_contacts_error():
     lmp.command("run 0")    # now initialised: contacts of this step
     assert vector(lmp, "pk")[2] == pytest.approx(16 / 9)
     lmp.close()
+
+
+# ----------------------------------------------------------------------------------------------
+# pair_style hybrid: the computes read granular/ellipsoid's contacts only (issue 27, item 5)
+
+# two overlapping spheres of type 1 and two of type 2 (every atom has a shape, as
+# granular/ellipsoid requires), apart from each other
+HYBRID_SCENE = """
+units lj
+atom_style hybrid sphere ellipsoid
+boundary p p p
+comm_modify vel yes
+region box block 0 10 0 10 0 10
+create_box 2 box
+create_atoms 1 single 2.0 5 5
+create_atoms 1 single 2.9 5 5
+create_atoms 2 single 6.0 5 5
+create_atoms 2 single 6.9 5 5
+set type * diameter 1.0
+set type * shape 1 1 1
+set type * density 1.0
+group two type 2
+"""
+
+CONTACT_COMPUTES = [("packing/ellipsoid EDGE EDGE", "Compute packing/ellipsoid"),
+                    ("contact/histo", "Compute contact/histo")]
+
+
+@pytest.mark.parametrize("hybrid", ["hybrid", "hybrid/overlay"])
+@pytest.mark.parametrize("compute,who", CONTACT_COMPUTES)
+def test_hybrid_with_another_contact_style_is_an_error(compute, who, hybrid):
+    """the issue's input: type 1's contact belongs to pair granular, which the computes
+    cannot see (they reported Z = 0 and no sample): an ERROR at init naming both"""
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(HYBRID_SCENE + f"""
+            pair_style {hybrid} granular granular/ellipsoid
+            pair_coeff 1 1 granular hooke 1000 0 tangential linear_nohistory 0 0
+            pair_coeff 2 2 granular/ellipsoid hertz 1000 0
+            pair_coeff 1 2 none
+            compute c all {compute}
+            """)
+        with pytest.raises(Exception, match=re.escape(
+                f"{who} counts the contacts of pair granular/ellipsoid only, but pair_style "
+                f"{hybrid} also has sub-style granular")):
+            lmp.command("run 0")
+    finally:
+        lmp.close()
+
+
+def test_hybrid_with_zero_and_none_counts_every_contact():
+    """granular/ellipsoid with zero and none, which make no contacts: the computes work and
+    see the one contact (of type 2)"""
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(HYBRID_SCENE + """
+            pair_style hybrid granular/ellipsoid zero 1.0
+            pair_coeff 2 2 granular/ellipsoid hertz 1000 0
+            pair_coeff 1 1 zero
+            pair_coeff 1 2 none
+            compute pk two packing/ellipsoid EDGE EDGE rattler 0
+            compute all all packing/ellipsoid EDGE EDGE rattler 0
+            compute ch all contact/histo
+            run 0
+            """)
+        assert vector(lmp, "pk")[1:3] == pytest.approx([2, 1.0])
+        assert vector(lmp, "all")[1:3] == pytest.approx([4, 0.5])
+        assert vector(lmp, "ch")[8] == 2    # one contact, two samples
+    finally:
+        lmp.close()

@@ -100,7 +100,8 @@ def test_same_trajectory_as_nve_asphere_and_spheres_keep_their_orientation(atom_
     ("atom_style sphere", "fix i all nve/ellipsoid\nrun 0",
      "Fix nve/ellipsoid requires atom style ellipsoid"),
     ("atom_style ellipsoid", "fix i all nve/ellipsoid\nrun 0",
-     "Fix nve/ellipsoid requires extended particles: atom 2 has no shape"),
+     "Fix nve/ellipsoid requires every atom of its group to be an ellipsoid: atom 2 has no "
+     "shape"),
     ("atom_style ellipsoid", "fix i all nve/ellipsoid spin",
      "Unknown fix nve/ellipsoid argument: spin"),
 ])
@@ -178,7 +179,8 @@ def test_shapeless_atom_joining_the_group_mid_run_is_an_error():
     lmp = new_lammps()
     try:
         with pytest.raises(Exception, match=re.escape(
-                "Fix nve/ellipsoid requires extended particles: atom 2 has no shape")):
+                "Fix nve/ellipsoid requires every atom of its group to be an ellipsoid: "
+                "atom 2 has no shape")):
             lmp.commands_string("""
 units lj
 atom_style ellipsoid

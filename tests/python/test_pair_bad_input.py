@@ -4,6 +4,7 @@ import re
 import pytest
 
 from conftest import new_lammps
+import scenes
 
 SETUP = """
 units lj
@@ -93,3 +94,25 @@ def test_unlike_models_cannot_mix():
     expect_error("pair_style granular/ellipsoid\npair_coeff 1 1 hertz 1e4 1\n"
                  "pair_coeff 2 2 hertz 1e4 1 tangential viscous 0.1\nrun 0\n",
                  "use different models", setup)
+
+
+def test_shapeless_atom_added_during_a_run():
+    """fix deposit adds atoms without a shape: an ERROR naming the first at the neighbour list
+    build that brings it (step 1), instead of reads outside the pair's arrays and lost atoms"""
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(scenes.shapeless_deposit(pair=True))
+        with pytest.raises(Exception, match=re.escape(
+                "Pair granular/ellipsoid requires every atom to be an ellipsoid: atom 2 has no "
+                "shape")):
+            lmp.command("run 3000")
+        assert lmp.extract_global("ntimestep") == 1
+    finally:
+        lmp.close()
+
+
+def test_only_one_instance_under_hybrid():
+    """a second instance replaced the first one's history fix: 'could not be found' at run 0,
+    then an abort when LAMMPS was closed"""
+    expect_error("pair_style hybrid granular/ellipsoid granular/ellipsoid\n",
+                 "Pair granular/ellipsoid can be used only once")

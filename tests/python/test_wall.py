@@ -1,12 +1,14 @@
 """fix wall/gran/ellipsoid: resting states, wall force, a small pour that settles, errors."""
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 import ed_helpers_pour as h
 import geometry
+import scenes
 
 G = 9.81
 RHO = 2500.0
@@ -194,3 +196,14 @@ def test_error_centre_behind_wall(tmp_path):
     with pytest.raises(Exception, match="solid side of a wall"):
         lmp.command("run 1")
     lmp.close()
+
+
+def test_shapeless_atom_added_during_a_run(lmp):
+    """The wall alone (no pair style) and fix deposit adding atoms without a shape: an ERROR
+    naming the first at the step it appears (1), instead of letting it fall through the wall"""
+    lmp.commands_string(scenes.shapeless_deposit(pair=False))
+    with pytest.raises(Exception, match=re.escape(
+            "Fix wall/gran/ellipsoid requires every atom of its group to be an ellipsoid: atom 2 "
+            "has no shape")):
+        lmp.command("run 3000")
+    assert lmp.extract_global("ntimestep") == 1
