@@ -82,9 +82,11 @@ def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, v
     mmin = 4.0 / 3.0 * math.pi * rmin**3
     # the region's top from its stated geometry (doc/fix_pour_ellipsoid.rst, "Protocol")
     n, fins = 100, float(variables.get("fins", "0.2"))
-    side = max(5.0, 0.3 * math.sqrt(n))
     eta, zeta = float(variables.get("eta", "1.4")), float(variables.get("zeta", "1.8"))
     dr = float(variables.get("dr", "0.6"))
+    # at least 5 d and two neighbour cutoffs (skin 0.2) of the longest particles
+    a_max = 0.5 * (1 + dr) * (eta**2 * zeta)**(1 / 3)
+    side = max(5.0, 0.3 * math.sqrt(n), 4 * a_max + 2 * 0.2)
     bottom = float(variables.get("zpour", "0")) or 1 + n * math.pi / 6 / (0.6 * side**2)
     top = bottom + n * math.pi / 6 / (fins * side**2) + (1 + dr) * (eta**2 * zeta)**(1 / 3)
     assert ztop == pytest.approx(top, rel=1e-12)
