@@ -145,3 +145,14 @@ def report(case, res):
     print(f"\nROBUST {case}: overlap/c_min pair {res['overlap_pair']:.3g} wall "
           f"{res['overlap_wall']:.3g}, ke_max {res['ke_max']:.4g}, contacts {c['contacts']}, "
           f"not converged {c['not_converged']}, mean iterations {c['mean_iterations']}")
+
+
+def assert_shapeless_atom_refused(lmp, commands, message):
+    """The scene (scenes.shapeless_deposit) stops with `message` at step 1, when fix deposit
+    brings its first atom without a shape, instead of running on."""
+    import pytest
+
+    lmp.commands_string(commands)
+    with pytest.raises(Exception, match=re.escape(message)):
+        lmp.command("run 3000")
+    assert lmp.extract_global("ntimestep") == 1

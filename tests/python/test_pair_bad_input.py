@@ -4,6 +4,7 @@ import re
 import pytest
 
 from conftest import new_lammps
+import robust_helpers as rb
 import scenes
 
 SETUP = """
@@ -101,12 +102,9 @@ def test_shapeless_atom_added_during_a_run():
     build that brings it (step 1), instead of reads outside the pair's arrays and lost atoms"""
     lmp = new_lammps()
     try:
-        lmp.commands_string(scenes.shapeless_deposit(pair=True))
-        with pytest.raises(Exception, match=re.escape(
-                "Pair granular/ellipsoid requires every atom to be an ellipsoid: atom 2 has no "
-                "shape")):
-            lmp.command("run 3000")
-        assert lmp.extract_global("ntimestep") == 1
+        rb.assert_shapeless_atom_refused(
+            lmp, scenes.shapeless_deposit(pair=True),
+            "Pair granular/ellipsoid requires every atom to be an ellipsoid: atom 2 has no shape")
     finally:
         lmp.close()
 

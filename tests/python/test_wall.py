@@ -8,6 +8,7 @@ import pytest
 
 import ed_helpers_pour as h
 import geometry
+import robust_helpers as rb
 import scenes
 
 G = 9.81
@@ -201,9 +202,7 @@ def test_error_centre_behind_wall(tmp_path):
 def test_shapeless_atom_added_during_a_run(lmp):
     """The wall alone (no pair style) and fix deposit adding atoms without a shape: an ERROR
     naming the first at the step it appears (1), instead of letting it fall through the wall"""
-    lmp.commands_string(scenes.shapeless_deposit(pair=False))
-    with pytest.raises(Exception, match=re.escape(
-            "Fix wall/gran/ellipsoid requires every atom of its group to be an ellipsoid: atom 2 "
-            "has no shape")):
-        lmp.command("run 3000")
-    assert lmp.extract_global("ntimestep") == 1
+    rb.assert_shapeless_atom_refused(
+        lmp, scenes.shapeless_deposit(pair=False),
+        "Fix wall/gran/ellipsoid requires every atom of its group to be an ellipsoid: atom 2 has "
+        "no shape")
