@@ -7,6 +7,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "force.h"
 #include "granular_ellipsoid_atoms.h"
 #include "update.h"
 
@@ -56,6 +57,17 @@ void ContactTimes::add(double contact, double damping, const std::string &where)
     damping_time = damping;
     damping_where = where;
   }
+}
+
+void ContactTimes::add_contact(LAMMPS *lmp, const EllipsoidDep::ForceLaw &law,
+                               double effective_radius, double effective_mass,
+                               double impact_speed, const std::string &where)
+{
+  const double ftm2v = lmp->force->ftm2v;
+  add(EllipsoidDep::hertz_contact_time(law.hertz_stiffness(effective_radius), effective_mass,
+                                       impact_speed, ftm2v),
+      EllipsoidDep::hertz_damping_time(law, effective_radius, effective_mass, impact_speed, ftm2v),
+      where);
 }
 
 namespace {
