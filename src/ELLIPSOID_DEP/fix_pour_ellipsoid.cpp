@@ -17,9 +17,11 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_wall_gran_ellipsoid.h"
 #include "force.h"
 #include "math_const.h"
 #include "modify.h"
+#include "pair_granular_ellipsoid.h"
 #include "random_park.h"
 #include "region.h"
 #include "update.h"
@@ -30,6 +32,7 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace EllipsoidDep;
+using MathConst::MY_4PI3;
 using MathConst::MY_PI;
 
 static constexpr double EPSILON = 0.001;
@@ -184,6 +187,55 @@ void FixPourEllipsoid::init()
   } else if (fabs(gnew - grav) > 1e-12 * MAX(1.0, fabs(grav)) && every == 0) {
     error->all(FLERR, "Gravity changed since fix pour/ellipsoid was created");
   }
+  // the pair's run-start check sees only the atoms present: an empty box has none
+  check_contact_times(true);
+}
+
+/* ----------------------------------------------------------------------
+   the time-step check of the particles to come
+------------------------------------------------------------------------- */
+
+double FixPourEllipsoid::lightest_mass() const
+{
+  return density * MY_4PI3 * distribution.rmin * distribution.rmin * distribution.rmin;
+}
+
+// released at the top of the region (as it stands at the last batch) with the largest
+// velocities the vel keyword allows, falling to the bottom of the box: the fastest a poured
+// particle can hit the floor or a resting particle
+double FixPourEllipsoid::impact_speed() const
+{
+  const double vx = MAX(fabs(vxlo), fabs(vxhi)), vy = MAX(fabs(vylo), fabs(vyhi));
+  const double drop = hi_current - domain->boxlo[2];
+  return sqrt(vx * vx + vy * vy + MAX(0.0, vz * vz - 2.0 * grav * drop));
+}
+
+void FixPourEllipsoid::check_contact_times(bool run_start)
+{
+  const double speed = impact_speed();
+  if (!(speed > 0.0)) return;
+  const double mass = lightest_mass(), radius = sampler->flattest_radius();
+  ContactTimes times;
+  // two of the lightest particles with the flattest surfaces, as the pair's check pairs types
+  auto *pair = dynamic_cast<PairGranularEllipsoid *>(force->pair_match("granular/ellipsoid", 1));
+  EllipsoidDep::ForceLaw law;
+  std::string refusal;
+  if (pair && pair->law_of_pair(ntype, ntype, law, refusal))
+    times.add_contact(lmp, law, effective_radius(radius, radius), mass * mass / (mass + mass),
+                      speed, fmt::format("types {} {}", ntype, ntype));
+  // one against every wall acting on the poured particles (their mask: all and this group)
+  for (const auto *fix : modify->get_fix_by_style("^wall/gran/ellipsoid$")) {
+    const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
+    if (wall && (fix->groupbit & (1 | groupbit)))
+      times.add_contact(lmp, wall->force_law(), radius, mass, speed,
+                        fmt::format("type {} on fix {}", ntype, fix->id));
+  }
+  const bool shorter = times.contact_time < 0.9 * checked.contact_time ||
+      times.damping_time < 0.9 * checked.damping_time;
+  if (!run_start && !shorter && update->dt == checked.timestep) return;
+  checked = times;
+  checked.timestep = update->dt;
+  report_contact_times(lmp, "Fix pour/ellipsoid", times, speed, times_reported);
 }
 
 /* ----------------------------------------------------------------------

@@ -17,6 +17,7 @@
 #include "ellipsoid_cell_grid.h"
 #include "ellipsoid_contact.h"
 #include "ellipsoid_pour_sampler.h"
+#include "granular_contact_time.h"
 
 #include <memory>
 #include <vector>
@@ -74,6 +75,15 @@ class FixPourEllipsoid : public Fix {
   double radius_one;    // for extract()
 
   int me, nprocs;
+
+  // The Hertz contact and damping times of the particles this fix will insert, against each
+  // other (the pair) and the walls, at the speed they can hit with: checked at every run
+  // start and again at a batch when they got shorter by more than 10 % (a rising region) or
+  // the time step changed. checked: the times and time step of the last check.
+  ContactTimes checked, times_reported;
+  double lightest_mass() const;
+  double impact_speed() const;
+  void check_contact_times(bool run_start);
 
   // fix_pour_ellipsoid_options.cpp
   void options(int, char **);

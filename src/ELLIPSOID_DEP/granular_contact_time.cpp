@@ -30,9 +30,8 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
     if (!(atom->mask[i] & groupbit) || !atoms.has_shape(i)) continue;
     const int t = atom->type[i];
     const double *s = atoms.shape(i);
-    const double thinnest = std::min(s[0], std::min(s[1], s[2]));
     neg_mass[t] = std::max(neg_mass[t], -atom->rmass[i]);
-    radius[t] = std::max(radius[t], s[0] * s[1] * s[2] / (thinnest * thinnest));
+    radius[t] = std::max(radius[t], EllipsoidDep::flattest_radius(s[0], s[1], s[2]));
     const double *v = atom->v[i];
     speed = std::max(speed, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
   }
