@@ -20,6 +20,7 @@
 #include "granular_contact_time.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -84,6 +85,14 @@ class FixPourEllipsoid : public Fix {
   double lightest_mass() const;
   double impact_speed() const;
   void check_contact_times(bool run_start);
+
+  // the arguments of the command, in restart order: keyword and values (restart refuses a
+  // re-specified pour whose arguments differ from those written)
+  struct Argument {
+    std::string keyword;
+    std::vector<double> values;
+  };
+  std::vector<Argument> arguments() const;
 
   // fix_pour_ellipsoid_options.cpp
   void options(int, char **);
