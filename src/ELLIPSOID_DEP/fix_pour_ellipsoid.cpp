@@ -26,6 +26,7 @@
 #include "region.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -413,22 +414,23 @@ void FixPourEllipsoid::restart(char *buf)
   } else {    // an older record holds N only
     written.push_back({"N", {list[n++]}});
   }
-  const auto given = arguments();
-  for (const Argument &old : written)
-    for (const Argument &now : given) {
-      if (now.keyword != old.keyword) continue;
-      bool same = true;
-      for (std::size_t k = 0; k < now.values.size(); k++)
-        same &= fabs(now.values[k] - old.values[k]) <=
-            1e-12 * MAX(fabs(now.values[k]), fabs(old.values[k]));
-      if (!same)
-        error->all(FLERR,
-                   "Fix pour/ellipsoid {}: {} {} differs from the restart file's {} {}: a pour "
-                   "continues only with the arguments it was written with (give a new fix ID "
-                   "for another pour)",
-                   id, now.keyword, argument_words(now.keyword, now.values), old.keyword,
-                   argument_words(old.keyword, old.values));
-    }
+  const std::vector<Argument> given = arguments();
+  for (const Argument &old : written) {
+    const Argument &now = *std::find_if(given.begin(), given.end(), [&](const Argument &a) {
+      return a.keyword == old.keyword;
+    });
+    bool same = true;
+    for (std::size_t k = 0; k < now.values.size(); k++)
+      same &= fabs(now.values[k] - old.values[k]) <=
+          1e-12 * MAX(fabs(now.values[k]), fabs(old.values[k]));
+    if (!same)
+      error->all(FLERR,
+                 "Fix pour/ellipsoid {}: {} {} differs from the restart file's {} {}: a pour "
+                 "continues only with the arguments it was written with (give a new fix ID "
+                 "for another pour)",
+                 id, now.keyword, argument_words(now.keyword, now.values), old.keyword,
+                 argument_words(old.keyword, old.values));
+  }
   random->reset(state);
 }
 
