@@ -86,13 +86,10 @@ def two_spheres(units, words, gap, speed, wall=True):
 
 def times(tmp_path, units, kind):
     """(pair contact, pair damping, wall contact, wall damping) times in seconds and the log;
-    the pair's from compute pair at full precision, the wall's from its log lines (6 digits)."""
+    the pair's from Pair::extract at full precision, the wall's from its log lines (6 digits)."""
     lmp = h.new_lammps(tmp_path, f"{units}_{kind}")
-    lmp.commands_list(two_spheres(units, law(units, kind), 2 * RADIUS, 0.0)
-                      + ["compute p all pair granular/ellipsoid", "thermo_style custom step c_p[12]",
-                         "run 0"])
-    pair = lmp.numpy.extract_compute("p", 0, 1)
-    pair_tc, pair_td = float(pair[11]), float(pair[12])
+    lmp.commands_list(two_spheres(units, law(units, kind), 2 * RADIUS, 0.0) + ["run 0"])
+    pair_tc, pair_td = lmp.extract_pair("contact_time"), lmp.extract_pair("damping_time")
     log = h.read_log(lmp)
     lmp.close()
     time = UNITS[units][2]
