@@ -36,11 +36,12 @@ double hertz_max_overlap(double stiffness, double effective_mass, double impact_
   return std::pow(5.0 * effective_mass * impact_speed * impact_speed / (4.0 * stiffness), 0.4);
 }
 
-double hertz_contact_time(double stiffness, double effective_mass, double impact_speed)
+double hertz_contact_time(double stiffness, double effective_mass, double impact_speed,
+                          double ftm2v)
 {
   // the time in contact is 2 xi_max / v times the integral of (1 - u^5/2)^(-1/2) over [0, 1]
   const double integral = 0.4 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9);
-  return 2.0 * integral * hertz_max_overlap(stiffness, effective_mass, impact_speed) /
+  return 2.0 * integral * hertz_max_overlap(stiffness, effective_mass / ftm2v, impact_speed) /
       impact_speed;
 }
 
@@ -57,13 +58,15 @@ double ForceLaw::damping_coefficient(double effective_radius, double sqrt_overla
 }
 
 double hertz_damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
-                    double impact_speed)
+                          double impact_speed, double ftm2v)
 {
+  const double inertia = effective_mass / ftm2v;
   const double max_overlap =
-      hertz_max_overlap(law.hertz_stiffness(effective_radius), effective_mass, impact_speed);
+      hertz_max_overlap(law.hertz_stiffness(effective_radius), inertia, impact_speed);
+  // the gamma of compute(), which sees the mass in mass units
   const double gamma =
       law.damping_coefficient(effective_radius, std::sqrt(max_overlap), effective_mass);
-  return gamma > 0.0 ? effective_mass / gamma : HUGE_VAL;
+  return gamma > 0.0 ? inertia / gamma : HUGE_VAL;
 }
 
 ContactForce ForceLaw::compute(const ContactGeometry &geometry, const ContactMotion &motion,

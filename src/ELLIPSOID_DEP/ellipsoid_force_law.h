@@ -86,15 +86,22 @@ struct ForceLaw {
 // speed impact_speed: (5 m* v^2 / (4 k))^(2/5).
 double hertz_max_overlap(double stiffness, double effective_mass, double impact_speed);
 
+// ftm2v below: the engine's factor in acceleration = ftm2v force / mass (LAMMPS's
+// force->ftm2v; 1 where mass, length, time and force are consistent, not so in LAMMPS's units
+// real, metal and electron). The inertia in the equation of motion is then m* / ftm2v.
+
 // Duration of an undamped Hertz impact, F = stiffness xi^3/2, at relative normal speed
 // impact_speed: 2 (2/5) B(2/5, 1/2) (5 m*/(4 k))^(2/5) v^(-1/5) ~ 3.218 (m*^2/(k^2 v))^(1/5).
-double hertz_contact_time(double stiffness, double effective_mass, double impact_speed);
+double hertz_contact_time(double stiffness, double effective_mass, double impact_speed,
+                          double ftm2v = 1.0);
 
 // m* / gamma at the deepest overlap of that impact (HUGE_VAL without damping). Velocity Verlet
 // integrates a damper stably only for dt / (m*/gamma) < 2: dt over this time is the damping
-// number a run must keep small.
+// number a run must keep small. gamma is the one compute() applies, from m* in mass units as
+// given (LAMMPS's pair granular's convention for the restitution damping); the time divides
+// the inertia m* / ftm2v by it.
 double hertz_damping_time(const ForceLaw &law, double effective_radius, double effective_mass,
-                    double impact_speed);
+                          double impact_speed, double ftm2v = 1.0);
 
 // A named material of the materials file, in the units of the simulation.
 struct Material {

@@ -9,6 +9,8 @@
 
 #include "ellipsoid_pour_sampler.h"
 
+#include "ellipsoid_shape.h"
+
 #include <cmath>
 #include <utility>
 
@@ -164,6 +166,15 @@ double PourSampler::smallest_semi_axis() const
   const double eta_max = dist.eta * (1.0 + dist.delta_eta);
   const double zeta_max = dist.zeta * (1.0 + dist.delta_zeta);
   return dist.rmin / std::cbrt(eta_max * zeta_max * zeta_max);
+}
+
+// ab/c = r (eta zeta^2)^(2/3) grows with r, eta and zeta
+double PourSampler::flattest_radius() const
+{
+  const double eta_max = dist.eta * (1.0 + dist.delta_eta);
+  const double zeta_max = dist.zeta * (1.0 + dist.delta_zeta);
+  const double c = dist.rmax / std::cbrt(eta_max * zeta_max * zeta_max);
+  return EllipsoidDep::flattest_radius(eta_max * zeta_max * c, zeta_max * c, c);
 }
 
 }    // namespace EllipsoidDep

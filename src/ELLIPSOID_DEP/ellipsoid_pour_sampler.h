@@ -57,6 +57,7 @@ class PourSampler {
   double mean_volume() const { return volume_mean; }    // 4/3 pi <r^3> under n(r)
   double largest_semi_axis() const;                     // a of rmax, eta_max, zeta_max
   double smallest_semi_axis() const;                    // c of rmin, eta_max, zeta_max
+  double flattest_radius() const;    // largest ab/c: that of rmax, eta_max, zeta_max
 
  private:
   PourDistribution dist;

@@ -121,6 +121,15 @@ inline double gaussian_radius(const Ellipsoid &e, const Vec3 &unit_normal)
   return gaussian_radius_of_nmn(e, unit_normal.dot(e.inverse_form * unit_normal));
 }
 
+// The largest Gaussian-curvature radius of an ellipsoid with semi-axes a, b, c (any order):
+// ab/c at the ends of the shortest axis c, the flattest place of its surface (with the
+// lightest mass it bounds the shortest Hertz contact time).
+inline double flattest_radius(double a, double b, double c)
+{
+  const double thinnest = std::min(a, std::min(b, c));
+  return a * b * c / (thinnest * thinnest);
+}
+
 // The force laws' R* = R_A R_B / (R_A + R_B) of two surface radii.
 inline double effective_radius(double ra, double rb)
 {

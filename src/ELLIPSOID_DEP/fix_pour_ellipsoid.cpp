@@ -17,19 +17,23 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_wall_gran_ellipsoid.h"
 #include "force.h"
 #include "math_const.h"
 #include "modify.h"
+#include "pair_granular_ellipsoid.h"
 #include "random_park.h"
 #include "region.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace EllipsoidDep;
+using MathConst::MY_4PI3;
 using MathConst::MY_PI;
 
 static constexpr double EPSILON = 0.001;
@@ -184,6 +188,55 @@ void FixPourEllipsoid::init()
   } else if (fabs(gnew - grav) > 1e-12 * MAX(1.0, fabs(grav)) && every == 0) {
     error->all(FLERR, "Gravity changed since fix pour/ellipsoid was created");
   }
+  // the pair's run-start check sees only the atoms present: an empty box has none
+  check_contact_times(true);
+}
+
+/* ----------------------------------------------------------------------
+   the time-step check of the particles to come
+------------------------------------------------------------------------- */
+
+double FixPourEllipsoid::lightest_mass() const
+{
+  return density * MY_4PI3 * distribution.rmin * distribution.rmin * distribution.rmin;
+}
+
+// released at the top of the region (as it stands at the last batch) with the largest
+// velocities the vel keyword allows, falling to the bottom of the box: the fastest a poured
+// particle can hit the floor or a resting particle
+double FixPourEllipsoid::impact_speed() const
+{
+  const double vx = MAX(fabs(vxlo), fabs(vxhi)), vy = MAX(fabs(vylo), fabs(vyhi));
+  const double drop = hi_current - domain->boxlo[2];
+  return sqrt(vx * vx + vy * vy + MAX(0.0, vz * vz - 2.0 * grav * drop));
+}
+
+void FixPourEllipsoid::check_contact_times(bool run_start)
+{
+  const double speed = impact_speed();
+  if (!(speed > 0.0)) return;
+  const double mass = lightest_mass(), radius = sampler->flattest_radius();
+  ContactTimes times;
+  // two of the lightest particles with the flattest surfaces, as the pair's check pairs types
+  auto *pair = dynamic_cast<PairGranularEllipsoid *>(force->pair_match("granular/ellipsoid", 1));
+  EllipsoidDep::ForceLaw law;
+  std::string refusal;
+  if (pair && pair->law_of_pair(ntype, ntype, law, refusal))
+    times.add_contact(lmp, law, effective_radius(radius, radius), mass * mass / (mass + mass),
+                      speed, fmt::format("types {} {}", ntype, ntype));
+  // one against every wall acting on the poured particles (their mask: all and this group)
+  for (const auto *fix : modify->get_fix_by_style("^wall/gran/ellipsoid$")) {
+    const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
+    if (wall && (fix->groupbit & (1 | groupbit)))
+      times.add_contact(lmp, wall->force_law(), radius, mass, speed,
+                        fmt::format("type {} on fix {}", ntype, fix->id));
+  }
+  const bool shorter = times.contact_time < 0.9 * checked.contact_time ||
+      times.damping_time < 0.9 * checked.damping_time;
+  if (!run_start && !shorter && update->dt == checked.timestep) return;
+  checked = times;
+  checked.timestep = update->dt;
+  report_contact_times(lmp, "Fix pour/ellipsoid", times, speed, times_reported);
 }
 
 /* ----------------------------------------------------------------------
@@ -262,29 +315,71 @@ double FixPourEllipsoid::compute_vector(int n)
 }
 
 /* ----------------------------------------------------------------------
-   global state: RNG seed, counters and schedule
+   global state: RNG seed, counters and schedule, then the arguments the pour was defined
+   with (its particles and schedule follow from them and the generator's state: a pour
+   re-specified with others after read_restart would silently be another pour)
 ------------------------------------------------------------------------- */
+
+// first value of a record that holds the arguments (records before 2 Dec 2026 start with
+// the generator's state, which is > 0)
+static constexpr double RESTART_WITH_ARGUMENTS = -2.0;
+
+std::vector<FixPourEllipsoid::Argument> FixPourEllipsoid::arguments() const
+{
+  const PourDistribution &d = distribution;
+  return {{"seed", {double(seed)}},
+          {"N", {double(ninsert)}},
+          {"type", {double(ntype)}},
+          {"size", {d.rmin, d.rmax}},
+          {"alpha", {d.alpha}},
+          {"beta", {d.beta}},
+          {"shape", {d.eta, d.zeta}},
+          {"dshape", {d.delta_eta, d.delta_zeta}},
+          {"density", {density}},
+          {"vol", {volfrac, double(maxattempt)}},
+          {"rate", {rate}},
+          {"vel", {vxlo, vxhi, vylo, vyhi, vz}},
+          {"release", {cloud ? 1.0 : 0.0}},
+          {"every", {double(every)}},
+          {"region", {double(region_style), xlo, xhi, ylo, yhi, zlo, zhi}}};
+}
+
+// an argument's values as the command gives them
+static std::string argument_words(const std::string &keyword, const std::vector<double> &values)
+{
+  if (keyword == "release") return values[0] != 0.0 ? "cloud" : "stream";
+  std::string words;
+  for (std::size_t k = 0; k < values.size(); k++) {
+    if (k > 0) words += " ";
+    if (keyword == "region" && k == 0)
+      words += values[0] == 1.0 ? "block" : "cylinder";
+    else
+      words += fmt::format("{}", values[k]);
+  }
+  return words;
+}
 
 void FixPourEllipsoid::write_restart(FILE *fp)
 {
-  double list[12];
-  int n = 0;
-  list[n++] = random->state();
-  list[n++] = ubuf(ninserted).d;
-  list[n++] = ubuf(nfailed).d;
-  list[n++] = ubuf(nrejected).d;
-  list[n++] = ubuf(nfirst).d;
-  list[n++] = ubuf(next_insert).d;
-  list[n++] = ubuf(update->ntimestep).d;
-  list[n++] = nper;
-  list[n++] = nfreq;
-  list[n++] = grav;
-  list[n++] = initialized;
-  list[n++] = ninsert;
+  std::vector<double> list;
+  list.push_back(RESTART_WITH_ARGUMENTS);
+  list.push_back(random->state());
+  list.push_back(ubuf(ninserted).d);
+  list.push_back(ubuf(nfailed).d);
+  list.push_back(ubuf(nrejected).d);
+  list.push_back(ubuf(nfirst).d);
+  list.push_back(ubuf(next_insert).d);
+  list.push_back(ubuf(update->ntimestep).d);
+  list.push_back(nper);
+  list.push_back(nfreq);
+  list.push_back(grav);
+  list.push_back(initialized);
+  for (const Argument &argument : arguments())
+    list.insert(list.end(), argument.values.begin(), argument.values.end());
   if (comm->me == 0) {
-    const int size = n * sizeof(double);
+    const int size = static_cast<int>(list.size() * sizeof(double));
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), n, fp);
+    fwrite(list.data(), sizeof(double), list.size(), fp);
   }
 }
 
@@ -292,7 +387,9 @@ void FixPourEllipsoid::restart(char *buf)
 {
   auto *list = (double *) buf;
   int n = 0;
-  seed = static_cast<int>(list[n++]);
+  const bool with_arguments = list[0] == RESTART_WITH_ARGUMENTS;
+  if (with_arguments) n++;
+  const int state = static_cast<int>(list[n++]);
   ninserted = ubuf(list[n++]).i;
   nfailed = ubuf(list[n++]).i;
   nrejected = ubuf(list[n++]).i;
@@ -303,13 +400,38 @@ void FixPourEllipsoid::restart(char *buf)
   nfreq = static_cast<int>(list[n++]);
   grav = list[n++];
   initialized = static_cast<int>(list[n++]);
-  const int ninsert_old = static_cast<int>(list[n++]);
   if (step != update->ntimestep)
     error->all(FLERR, "Must not reset the timestep when restarting fix pour/ellipsoid");
-  if (ninsert_old != ninsert && comm->me == 0)
-    error->warning(FLERR, "Fix pour/ellipsoid N changed from {} to {} across the restart",
-                   ninsert_old, ninsert);
-  random->reset(seed);
+
+  // the command must be the one the pour was written with (to 1e-12 relative: a value
+  // computed in another order is the same argument)
+  std::vector<Argument> written;
+  if (with_arguments) {
+    for (Argument argument : arguments()) {
+      for (double &value : argument.values) value = list[n++];
+      written.push_back(argument);
+    }
+  } else {    // an older record holds N only
+    written.push_back({"N", {list[n++]}});
+  }
+  const std::vector<Argument> given = arguments();
+  for (const Argument &old : written) {
+    const Argument &now = *std::find_if(given.begin(), given.end(), [&](const Argument &a) {
+      return a.keyword == old.keyword;
+    });
+    bool same = true;
+    for (std::size_t k = 0; k < now.values.size(); k++)
+      same &= fabs(now.values[k] - old.values[k]) <=
+          1e-12 * MAX(fabs(now.values[k]), fabs(old.values[k]));
+    if (!same)
+      error->all(FLERR,
+                 "Fix pour/ellipsoid {}: {} {} differs from the restart file's {} {}: a pour "
+                 "continues only with the arguments it was written with (give a new fix ID "
+                 "for another pour)",
+                 id, now.keyword, argument_words(now.keyword, now.values), old.keyword,
+                 argument_words(old.keyword, old.values));
+  }
+  random->reset(state);
 }
 
 /* ----------------------------------------------------------------------

@@ -17,8 +17,10 @@
 #include "ellipsoid_cell_grid.h"
 #include "ellipsoid_contact.h"
 #include "ellipsoid_pour_sampler.h"
+#include "granular_contact_time.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -74,6 +76,23 @@ class FixPourEllipsoid : public Fix {
   double radius_one;    // for extract()
 
   int me, nprocs;
+
+  // The Hertz contact and damping times of the particles this fix will insert, against each
+  // other (the pair) and the walls, at the speed they can hit with: checked at every run
+  // start and again at a batch when they got shorter by more than 10 % (a rising region) or
+  // the time step changed. checked: the times and time step of the last check.
+  ContactTimes checked, times_reported;
+  double lightest_mass() const;
+  double impact_speed() const;
+  void check_contact_times(bool run_start);
+
+  // the arguments of the command, in restart order: keyword and values (restart refuses a
+  // re-specified pour whose arguments differ from those written)
+  struct Argument {
+    std::string keyword;
+    std::vector<double> values;
+  };
+  std::vector<Argument> arguments() const;
 
   // fix_pour_ellipsoid_options.cpp
   void options(int, char **);

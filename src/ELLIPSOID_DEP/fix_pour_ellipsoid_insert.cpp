@@ -235,6 +235,7 @@ void FixPourEllipsoid::pre_exchange()
 
   lo_current = zlo + (update->ntimestep - nfirst) * update->dt * rate;
   hi_current = zhi + (update->ntimestep - nfirst) * update->dt * rate;
+  check_contact_times(false);    // a rising region drops its particles from higher up
 
   std::vector<Ellipsoid> near = gather_near_region(nnew);
   CellGrid cells = near_cells(near, nnew);

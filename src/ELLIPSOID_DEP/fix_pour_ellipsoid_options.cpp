@@ -245,7 +245,7 @@ void FixPourEllipsoid::check_representable() const
 {
   const double rmin = distribution.rmin, rmax = distribution.rmax;
   const double c_min = sampler->smallest_semi_axis();
-  const double mass_min = density * MY_4PI3 * rmin * rmin * rmin;
+  const double mass_min = lightest_mass();
   const double mass_max = density * MY_4PI3 * rmax * rmax * rmax;
   if (!std::isnormal(mass_min) || !std::isnormal(mass_min * c_min * c_min) ||
       !std::isnormal(sampler->mean_volume()) ||

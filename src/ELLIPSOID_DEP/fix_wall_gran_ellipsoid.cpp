@@ -215,8 +215,7 @@ void FixWallGranEllipsoid::update_contact_times()
   for (int t = 1; t <= atom->ntypes; t++) {
     const double mass = scales.lightest_mass[t], radius = scales.flattest_radius[t];
     if (!(mass > 0.0 && speed > 0.0)) continue;
-    times.add(hertz_contact_time(law.hertz_stiffness(radius), mass, speed),
-              hertz_damping_time(law, radius, mass, speed), fmt::format("type {}", t));
+    times.add_contact(lmp, law, radius, mass, speed, fmt::format("type {}", t));
   }
   report_contact_times(lmp, "Fix wall/gran/ellipsoid", times, speed, times_reported);
 }

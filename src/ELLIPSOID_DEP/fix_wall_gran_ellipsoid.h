@@ -38,6 +38,9 @@ class FixWallGranEllipsoid : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
 
+  // the walls' law (fix pour/ellipsoid checks the time step of its particles against it)
+  const EllipsoidDep::ForceLaw &force_law() const { return law; }
+
  private:
   struct Wall {
     int dim;                      // 0, 1, 2 = x, y, z

@@ -7,6 +7,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "force.h"
 #include "granular_ellipsoid_atoms.h"
 #include "update.h"
 
@@ -29,9 +30,8 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
     if (!(atom->mask[i] & groupbit) || !atoms.has_shape(i)) continue;
     const int t = atom->type[i];
     const double *s = atoms.shape(i);
-    const double thinnest = std::min(s[0], std::min(s[1], s[2]));
     neg_mass[t] = std::max(neg_mass[t], -atom->rmass[i]);
-    radius[t] = std::max(radius[t], s[0] * s[1] * s[2] / (thinnest * thinnest));
+    radius[t] = std::max(radius[t], EllipsoidDep::flattest_radius(s[0], s[1], s[2]));
     const double *v = atom->v[i];
     speed = std::max(speed, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
   }
@@ -56,6 +56,17 @@ void ContactTimes::add(double contact, double damping, const std::string &where)
     damping_time = damping;
     damping_where = where;
   }
+}
+
+void ContactTimes::add_contact(LAMMPS *lmp, const EllipsoidDep::ForceLaw &law,
+                               double effective_radius, double effective_mass,
+                               double impact_speed, const std::string &where)
+{
+  const double ftm2v = lmp->force->ftm2v;
+  add(EllipsoidDep::hertz_contact_time(law.hertz_stiffness(effective_radius), effective_mass,
+                                       impact_speed, ftm2v),
+      EllipsoidDep::hertz_damping_time(law, effective_radius, effective_mass, impact_speed, ftm2v),
+      where);
 }
 
 namespace {

@@ -3,12 +3,14 @@
    wall: the Hertz contact time and the damping time m* / gamma at the deepest overlap.
    Per type the lightest atom and the flattest surface (largest Gaussian curvature radius,
    ab/c for semi-axes a >= b >= c) give the shortest of that type; the styles combine them
-   with their laws (EllipsoidDep::hertz_contact_time, EllipsoidDep::hertz_damping_time) and report
-   the shortest.
+   with their laws (ContactTimes::add_contact: EllipsoidDep::hertz_contact_time and
+   EllipsoidDep::hertz_damping_time in the unit style's time) and report the shortest.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANULAR_CONTACT_TIME_H
 #define LMP_GRANULAR_CONTACT_TIME_H
+
+#include "ellipsoid_force_law.h"
 
 #include <string>
 #include <vector>
@@ -41,6 +43,11 @@ struct ContactTimes {
   double timestep = 0.0;    // of the last report (last_reported only)
   // keeps the shorter of each
   void add(double contact, double damping, const std::string &where);
+  // the contact and damping times of one contact (law, R*, m* in mass units, impact speed)
+  // in the time unit of the run: the law's times with LAMMPS's force->ftm2v, without which
+  // units real, metal and electron got them wrong (doc/robustness.md)
+  void add_contact(LAMMPS *lmp, const EllipsoidDep::ForceLaw &law, double effective_radius,
+                   double effective_mass, double impact_speed, const std::string &where);
 };
 
 // Logs "who: Hertz contact time ..." and "who: damping number ..." on rank 0 and warns when

@@ -339,8 +339,7 @@ void PairGranularEllipsoid::update_contact_times()
       if (!law_of_pair(i, j, law, refusal)) continue;    // init_one reports it
       const double radius = effective_radius(scales.flattest_radius[i], scales.flattest_radius[j]);
       const double mass = mi * mj / (mi + mj);
-      times.add(hertz_contact_time(law.hertz_stiffness(radius), mass, speed),
-                hertz_damping_time(law, radius, mass, speed), fmt::format("types {} {}", i, j));
+      times.add_contact(lmp, law, radius, mass, speed, fmt::format("types {} {}", i, j));
     }
   contact_time = times.contact_time;
   damping_time = std::isfinite(times.damping_time) ? times.damping_time : 0.0;

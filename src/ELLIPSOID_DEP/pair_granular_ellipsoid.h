@@ -48,6 +48,9 @@ class PairGranularEllipsoid : public Pair {
   void global_counters(double *out) const;
   void *extract_counters(const char *name, int &dim);    // null: not a counter name
   static constexpr int NUM_COUNTERS = EllipsoidDep::NUM_PIPELINE_COUNTERS;
+  // The law of types i j, set or mixed (false with the reason when there is none); public for
+  // fix pour/ellipsoid's time-step check of the particles it will insert.
+  bool law_of_pair(int i, int j, EllipsoidDep::ForceLaw &law, std::string &refusal) const;
 
  protected:
   EllipsoidDep::PipelineSettings pipeline;
@@ -104,7 +107,6 @@ class PairGranularEllipsoid : public Pair {
 
   void allocate();
   int add_law(const EllipsoidDep::ForceLaw &law);
-  bool law_of_pair(int i, int j, EllipsoidDep::ForceLaw &law, std::string &refusal) const;
 
   // per-pair history layout (PairCache::LAYOUT_VERSION; 0 for layouts 1 and 2, whose files
   // hold the bare size) and size of the run that wrote the restart file this pair was read

@@ -333,6 +333,7 @@ TEST(PourSampler, ShapePolydispersityIsUniformAndBounded)
     ASSERT_TRUE(s[0] >= s[1] && s[1] >= s[2]);
     ASSERT_LE(s[0], sampler.largest_semi_axis() * (1 + 1e-15));
     ASSERT_GE(s[2], sampler.smallest_semi_axis() * (1 - 1e-15));
+    ASSERT_LE(s[0] * s[1] / s[2], sampler.flattest_radius() * (1 + 1e-15));
     EXPECT_NEAR(std::cbrt(s[0] * s[1] * s[2]), r, 1e-15);
     eta[k] = s[0] / s[1];
     zeta[k] = s[1] / s[2];
@@ -353,6 +354,9 @@ TEST(PourSampler, ShapePolydispersityIsUniformAndBounded)
   EXPECT_NEAR(extreme.semi_axes(d.rmax)[0], extreme.largest_semi_axis(), 1e-15);
   EXPECT_NEAR(extreme.semi_axes(d.rmin)[2], extreme.smallest_semi_axis(), 1e-15);
   EXPECT_EQ(top.calls, 4);    // one deviate per polydisperse factor
+  ScriptedUniform flattest{{1.0, 1.0}};
+  const Eigen::Vector3d flat = PourSampler(d, flattest.source()).semi_axes(d.rmax);
+  EXPECT_NEAR(flat[0] * flat[1] / flat[2], extreme.flattest_radius(), 1e-14);
 }
 
 // ---- orientations: Haar-uniform on SO(3) ----

