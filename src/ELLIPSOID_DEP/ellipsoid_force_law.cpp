@@ -13,7 +13,6 @@ namespace {
 
   // sqrt(5/6): the factor of the Tsuji-type damping derived from the restitution coefficient
   const double SQRT_5_6 = std::sqrt(5.0 / 6.0);
-  const double PI = 3.14159265358979323846;
 
   // E* of the contact; for unlike materials E holds the mixed value that gives Hertz's
   // 1/E* = (1-nu_a^2)/E_a + (1-nu_b^2)/E_b (see mix_laws)

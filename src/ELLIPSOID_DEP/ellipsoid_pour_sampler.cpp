@@ -18,8 +18,7 @@ namespace EllipsoidDep {
 
 namespace {
 
-  constexpr double PI = 3.14159265358979323846;
-  constexpr double TWO_PI = 6.28318530717958647692;
+  constexpr double TWO_PI = 2.0 * PI;
   constexpr double FOUR_PI_3 = 4.18879020478639098462;
   constexpr double MONO_SIZED = 1.0e-12;    // relative width of a size range taken as one size
 

@@ -10,7 +10,6 @@
 namespace EllipsoidDep {
 
 namespace {
-  constexpr double kPi = 3.14159265358979323846;
 
   inline Mat3 rotation_of(const double quat[4])
   {
@@ -57,7 +56,7 @@ Mat4 Ellipsoid::homogeneous() const
 
 double Ellipsoid::volume() const
 {
-  return 4.0 / 3.0 * kPi * semi_axes[0] * semi_axes[1] * semi_axes[2];
+  return 4.0 / 3.0 * PI * semi_axes[0] * semi_axes[1] * semi_axes[2];
 }
 
 Ellipsoid make_ellipsoid(const Vec3 &center, const Mat3 &rotation, const Vec3 &semi_axes)

@@ -33,6 +33,8 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Mat4 = Eigen::Matrix4d;
 
+inline constexpr double PI = 3.14159265358979323846;    // the kernel's one pi
+
 // Centre and bounding radius first (the bounding test reads them for every candidate pair),
 // then inverse_form (cached plane, Newton iteration); form (cold starts, the Wang test) last.
 struct Ellipsoid {

@@ -14,7 +14,7 @@ using namespace EllipsoidDep;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = EllipsoidDep::PI;
 
 Oracle::Body body(const Ellipsoid &e)
 {

@@ -8,6 +8,7 @@
 // reference CDFs are analytic or integrated here by quadrature, independently of the
 // sampler's own integrals.
 #include "ellipsoid_pour_sampler.h"
+#include "ellipsoid_shape.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +25,7 @@ using namespace EllipsoidDep;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = EllipsoidDep::PI;
 constexpr double kAccept = 1.95;    // sqrt(n) D at the 0.1 % level
 constexpr double kReject = 5.0;     // sqrt(n) D a wrong distribution must exceed
 constexpr int kSamples = 20000;
