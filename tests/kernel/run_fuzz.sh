@@ -8,9 +8,9 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 OUT="$ROOT/build/fuzz"
 mkdir -p "$OUT/corpus"
 CXX=${CXX_FUZZ:-clang++}
-KERNEL_SRC=$(ls "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.cpp | grep -v ellipsoid_dep_plugin.cpp)
+KERNEL_SRC=$(ls "$ROOT"/src/kernel/*.cpp "$ROOT"/src/kernel/force_laws/*.cpp)
 $CXX -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-  -I "$ROOT/src/ELLIPSOID_DEP" -I/usr/include/eigen3 \
+  -I "$ROOT/src/kernel" -I "$ROOT/src/kernel/force_laws" -I/usr/include/eigen3 \
   "$ROOT/tests/kernel/fuzz_kernel.cpp" $KERNEL_SRC -o "$OUT/fuzz_kernel"
 cd "$OUT"
 exec ./fuzz_kernel -max_total_time="$SECONDS_TO_RUN" -print_final_stats=1 \

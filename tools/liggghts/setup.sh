@@ -99,11 +99,10 @@ sync_file() { cmp -s "$1" "$2" || { cp "$1" "$2"; say "  updated $(basename "$2"
 
 sync_adapter() {
   local f
-  for f in "$HERE"/adapter/*; do [ -f "$f" ] || continue; sync_file "$f" "$SRC/$(basename "$f")"; done
-  # the contact kernel: every src/ELLIPSOID_DEP/ellipsoid_* file but the LAMMPS plugin entry
-  # and the force laws (LIGGGHTS uses its own)
-  for f in "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.h "$ROOT"/src/ELLIPSOID_DEP/ellipsoid_*.cpp; do
-    case "$(basename "$f")" in ellipsoid_dep_plugin.cpp | ellipsoid_force_law*) continue ;; esac
+  for f in "$ROOT"/src/liggghts/*; do [ -f "$f" ] || continue; sync_file "$f" "$SRC/$(basename "$f")"; done
+  # the contact kernel: src/kernel without its force laws (src/kernel/force_laws: LIGGGHTS
+  # uses its own)
+  for f in "$ROOT"/src/kernel/*.h "$ROOT"/src/kernel/*.cpp; do
     sync_file "$f" "$SRC/$(basename "$f")"
   done
 }

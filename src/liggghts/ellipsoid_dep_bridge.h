@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP adapter for LIGGGHTS-PUBLIC 3.8: a plain-double bridge to the engine-independent
-   contact kernel (src/ELLIPSOID_DEP/ellipsoid_*.{h,cpp} of the ELLIPSOID_DEP repository).
+   contact kernel (src/kernel of the ELLIPSOID_DEP repository).
 
    This header has no Eigen and no LIGGGHTS include, so LIGGGHTS's heavy contact-model template
    units do not see Eigen; ellipsoid_dep_bridge.cpp is the only file that includes the kernel.
