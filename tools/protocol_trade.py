@@ -19,7 +19,7 @@ table (mean +- standard error over seeds, the difference from the reference agai
 reference's seed-to-seed standard deviation) as markdown and plots phi and Z against the cost
 (steps) into results/protocol_trade/protocol_trade_N<N>.png. Runs go to
 runs/protocol_trade/N<N>/<config>/s<seed>/. The N = 400 results and their reading:
-doc/benchmarks.md, "Protocol".
+doc/CHANGELOG.md, 2026-12-01, "Protocol".
 """
 import argparse
 import concurrent.futures

@@ -7,7 +7,7 @@ Reads each run folder's deposit.dump (the runner's OVITO dump), writes it as a L
 file and evaluates compute packing/ellipsoid at run 0 in the fixed bulk slab z in [1, 4] d and
 in the default slab (auto bottom 1 top 2, with surface max and surface columns). Contacts are
 the pair's overlaps, so the law's constants do not matter. The auto values reproduce the run's
-packing.dat (doc/benchmarks.md, "Time to deposit").
+packing.dat (doc/CHANGELOG.md, 2026-12-01, "The pour protocol against the protocol before").
 """
 import os
 import sys
