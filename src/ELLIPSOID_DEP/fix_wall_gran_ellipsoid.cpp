@@ -2,7 +2,7 @@
    ELLIPSOID_DEP: fix wall/gran/ellipsoid (see doc/fix_wall_gran_ellipsoid.rst)
 
    Each wall is a plane; the particle is body i and the wall body j at rest (v_j = omega_j
-   = 0, effective mass m_i). The geometry comes from EllipsoidDep::ellipsoid_plane_contact
+   = 0, effective mass m_i). The geometry comes from EllipsoidDep::wall_contact
    and the force from ForceLaw::compute, the one definition the pair style uses too.
 ------------------------------------------------------------------------- */
 
@@ -131,13 +131,13 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
                    "Fix wall/gran/ellipsoid {} {}: expected a number or "
                    "NULL, got '{}'",
                    word, k == 0 ? "lo" : "hi", value);
-      Wall w;
-      w.dim = dim;
-      w.side = k == 0 ? -1 : 1;
-      w.coord = utils::numeric(FLERR, value, false, lmp);
+      // lo: solid below the plane, hi: solid above it
+      const double coord = utils::numeric(FLERR, value, false, lmp);
+      WallSurface w;
+      w.shape = WallShape::Plane;
       w.normal = Vec3::Zero();
       w.normal[dim] = k == 0 ? 1.0 : -1.0;
-      w.offset = k == 0 ? w.coord : -w.coord;
+      w.offset = k == 0 ? coord : -coord;
       walls.push_back(w);
     }
     const char *lo = arg[iarg + 1], *hi = arg[iarg + 2];
@@ -235,11 +235,11 @@ void FixWallGranEllipsoid::setup(int vflag)
     if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix wall/gran/ellipsoid", i, groupbit);
     const Ellipsoid e = atoms.ellipsoid(i);
     const double thin = e.semi_axes.minCoeff();
-    for (const Wall &w : walls) {
-      if (w.normal.dot(e.center) - w.offset <= 0.0) {
+    for (const WallSurface &w : walls) {
+      if (wall_clearance(w, e.center) <= 0.0) {
         counts[0] += 1.0;
       } else {
-        const ContactGeometry g = ellipsoid_plane_contact(e, w.normal, w.offset);
+        const ContactGeometry g = wall_contact(e, w);
         if (g.overlap > 0.5 * thin) counts[1] += 1.0;
       }
     }
@@ -293,17 +293,16 @@ void FixWallGranEllipsoid::wall_forces()
     EllipsoidState state;
 
     for (int k = 0; k < nwalls; k++) {
-      const Wall &w = walls[k];
+      const WallSurface &w = walls[k];
       double *history = wall_history(i, k);
-      // bounding sphere clear of the plane: no contact
-      const double height = w.normal[w.dim] * x[i][w.dim] - w.offset;
+      // bounding sphere clear of the wall: no contact
       ContactGeometry g;
-      if (height < bound) {
+      if (wall_clearance(w, Vec3(x[i][0], x[i][1], x[i][2])) < bound) {
         if (!built) {
           state.shape = atoms.ellipsoid(i);
           built = true;
         }
-        g = ellipsoid_plane_contact(state.shape, w.normal, w.offset);
+        g = wall_contact(state.shape, w);
       }
       if (g.status != Status::Overlapping) {
         if (history && history_update) std::fill_n(history, law.history_size(), 0.0);

@@ -11,6 +11,7 @@
 #include "fix.h"
 
 #include "ellipsoid_force_law.h"
+#include "ellipsoid_wall_contact.h"
 #include "granular_contact_time.h"
 
 #include <vector>
@@ -42,14 +43,8 @@ class FixWallGranEllipsoid : public Fix {
   const EllipsoidDep::ForceLaw &force_law() const { return law; }
 
  private:
-  struct Wall {
-    int dim;                      // 0, 1, 2 = x, y, z
-    int side;                     // -1: lower wall (solid below), +1: upper wall (solid above)
-    double coord;                 // position of the plane
-    EllipsoidDep::Vec3 normal;    // unit, into the particle region
-    double offset;                // solid half-space {x : normal.x <= offset}
-  };
-  std::vector<Wall> walls;
+  // the walls' surfaces in the kernel's terms (planes: xplane, yplane, zplane)
+  std::vector<EllipsoidDep::WallSurface> walls;
   EllipsoidDep::ForceLaw law;
   int size_history;        // the law's history size per wall (tangential displacement)
   double **history_one;    // per atom, per wall
