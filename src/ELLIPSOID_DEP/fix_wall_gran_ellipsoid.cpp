@@ -97,6 +97,10 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
       mix_laws(particle_law, wall_side, law);
       continue;
     }
+    if (word == "wiggle" || word == "shear") {
+      iarg += parse_motion(iarg, narg, arg);
+      continue;
+    }
     if (word == "impact_velocity") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
       impact_velocity = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -115,7 +119,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     if (dim < 0)
       error->all(FLERR, iarg,
                  "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane, zplane, wall_material, impact_velocity, or a force-law word)",
+                 "yplane, zplane, wall_material, wiggle, shear, impact_velocity, or a "
+                 "force-law word)",
                  word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
@@ -149,6 +154,16 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   }
   if (walls.empty())
     error->all(FLERR, "Fix wall/gran/ellipsoid: every wall is NULL; nothing to do");
+  if (motion.kind == Motion::Kind::Shear)
+    for (const WallSurface &w : walls)
+      if (w.normal[motion.dim] != 0.0)
+        error->all(FLERR,
+                   "Fix wall/gran/ellipsoid: shear along {} would move a wall normal to {} "
+                   "into the particles (use wiggle)",
+                   "xyz"[motion.dim], "xyz"[motion.dim]);
+  for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
+  motion.time_origin = update->ntimestep;
+  wall_velocity = Vec3::Zero();
 
   const int nwalls = static_cast<int>(walls.size());
   vector_flag = 1;
@@ -227,6 +242,7 @@ void FixWallGranEllipsoid::update_contact_times()
 
 void FixWallGranEllipsoid::setup(int vflag)
 {
+  move_walls();
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal;
   double counts[2] = {0.0, 0.0};
@@ -273,6 +289,7 @@ void FixWallGranEllipsoid::post_force(int /*vflag*/)
 void FixWallGranEllipsoid::wall_forces()
 {
   force_flag = 0;
+  move_walls();
   std::fill(wall_force.begin(), wall_force.end(), 0.0);
 
   const EllipsoidAtoms atoms(atom);
@@ -312,8 +329,11 @@ void FixWallGranEllipsoid::wall_forces()
         atoms.add_motion(i, state);
         moving = true;
       }
+      // setup forces look at the stored history without advancing it (on a copy, dt 0), as
+      // the pair's do: a step's displacement there would push the particle once, unrecorded
       const TangentialHistory tangential(history, history_update);
-      const ContactForce result = law.compute(g, wall_motion(state, g.point), dt, tangential.get());
+      const ContactForce result = law.compute(g, wall_motion(state, g.point, wall_velocity),
+                                              history_update ? dt : 0.0, tangential.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];

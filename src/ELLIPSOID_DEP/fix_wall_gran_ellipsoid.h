@@ -43,8 +43,21 @@ class FixWallGranEllipsoid : public Fix {
   const EllipsoidDep::ForceLaw &force_law() const { return law; }
 
  private:
-  // the walls' surfaces in the kernel's terms (planes: xplane, yplane, zplane)
+  // the walls' surfaces in the kernel's terms (planes: xplane, yplane, zplane), at this step
   std::vector<EllipsoidDep::WallSurface> walls;
+  // wiggle or shear, as fix wall/gran's: every wall of the fix moves along dim; a wiggled
+  // wall normal to dim is at rest_offset + A (1 - cos(omega t)) along its normal's dim
+  // component, t from the step the fix was defined at
+  struct Motion {
+    enum class Kind { None, Wiggle, Shear } kind = Kind::None;
+    int dim = -1;
+    double amplitude = 0.0, omega = 0.0, vshear = 0.0;
+    bigint time_origin = 0;
+  } motion;
+  std::vector<double> rest_offset;     // the walls' offsets when the wiggle's phase is 0
+  EllipsoidDep::Vec3 wall_velocity;    // of every wall, at this step
+  int parse_motion(int iarg, int narg, char **arg);
+  void move_walls();
   EllipsoidDep::ForceLaw law;
   int size_history;        // the law's history size per wall (tangential displacement)
   double **history_one;    // per atom, per wall
