@@ -101,6 +101,10 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
       iarg += parse_motion(iarg, narg, arg);
       continue;
     }
+    if (word == "servo") {
+      iarg += parse_servo(iarg, narg, arg);
+      continue;
+    }
     if (word == "impact_velocity") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
       impact_velocity = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -119,8 +123,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     if (dim < 0)
       error->all(FLERR, iarg,
                  "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane, zplane, wall_material, wiggle, shear, impact_velocity, or a "
-                 "force-law word)",
+                 "yplane, zplane, wall_material, wiggle, shear, servo, impact_velocity, "
+                 "or a force-law word)",
                  word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
@@ -161,13 +165,18 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
                    "Fix wall/gran/ellipsoid: shear along {} would move a wall normal to {} "
                    "into the particles (use wiggle)",
                    "xyz"[motion.dim], "xyz"[motion.dim]);
+  if (motion.kind == Motion::Kind::Servo && walls.size() != 1)
+    error->all(FLERR, "Fix wall/gran/ellipsoid servo moves one wall: give one lo or hi wall (the "
+                      "other walls in a fix of their own)");
   for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
+  restart_global = motion.kind != Motion::Kind::None ? 1 : 0;
   motion.time_origin = update->ntimestep;
   wall_velocity = Vec3::Zero();
 
   const int nwalls = static_cast<int>(walls.size());
   vector_flag = 1;
-  size_vector = 3 * nwalls;
+  // a servo's wall also reports where it is (its coordinate along its normal's dimension)
+  size_vector = 3 * nwalls + (motion.kind == Motion::Kind::Servo ? 1 : 0);
   global_freq = 1;
   extvector = 1;
   create_attribute = 1;
@@ -242,7 +251,7 @@ void FixWallGranEllipsoid::update_contact_times()
 
 void FixWallGranEllipsoid::setup(int vflag)
 {
-  move_walls();
+  if (motion.kind != Motion::Kind::Servo) move_walls();
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal;
   double counts[2] = {0.0, 0.0};
@@ -289,7 +298,8 @@ void FixWallGranEllipsoid::post_force(int /*vflag*/)
 void FixWallGranEllipsoid::wall_forces()
 {
   force_flag = 0;
-  move_walls();
+  // a servo moves at time steps only (setup forces look without moving anything)
+  if (history_update || motion.kind != Motion::Kind::Servo) move_walls();
   std::fill(wall_force.begin(), wall_force.end(), 0.0);
 
   const EllipsoidAtoms atoms(atom);
@@ -341,6 +351,14 @@ void FixWallGranEllipsoid::wall_forces()
       }
     }
   }
+  // the servo's measure for the next step: the particles' push on its wall, along -n
+  if (motion.kind == Motion::Kind::Servo) {
+    MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
+                  MPI_DOUBLE, MPI_SUM, world);
+    force_flag = 1;
+    motion.force = -Vec3(wall_force_all[0], wall_force_all[1], wall_force_all[2])
+                        .dot(walls[0].normal);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -354,6 +372,11 @@ double FixWallGranEllipsoid::compute_vector(int n)
     MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
                   MPI_DOUBLE, MPI_SUM, world);
     force_flag = 1;
+  }
+  if (n == 3 * static_cast<int>(walls.size())) {    // the servo's wall coordinate
+    const Vec3 &normal = walls[0].normal;
+    for (int d = 0; d < 3; d++)
+      if (normal[d] != 0.0) return walls[0].offset / normal[d];
   }
   return wall_force_all[n];
 }
