@@ -95,11 +95,15 @@ def vertex(x, y, degree):
     if degree == 2:
         with np.errstate(divide="ignore", invalid="ignore"):
             xm = np.where(c[0] < 0, -c[1] / (2 * c[0]), np.nan)
-    else:    # cubic: the root of the derivative with a negative second derivative
+    else:    # cubic: the root of f' = a x^2 + b x + cc where f'' = 2 a x + b < 0, in the
+        # stable form (q / a, cc / q): the cubic term of a near-parabola is ~0
         a, b, cc = 3 * c[0], 2 * c[1], c[2]
         disc = b * b - 4 * a * cc
         with np.errstate(divide="ignore", invalid="ignore"):
-            xm = np.where(disc >= 0, (-b - np.sqrt(np.abs(disc))) / (2 * a), np.nan)
+            q = -0.5 * (b + np.where(b < 0, -1.0, 1.0) * np.sqrt(np.abs(disc)))
+            r1, r2 = q / a, cc / q
+            xm = np.where(2 * a * r1 + b < 0, r1, r2)
+            xm = np.where(disc >= 0, xm, np.nan)
     xm = np.where((xm >= x[0]) & (xm <= x[-1]), xm, np.nan)
     ym = sum(c[k] * xm ** (degree - k) for k in range(degree + 1))
     return xm, ym
@@ -184,9 +188,9 @@ def verdict(z, needed, seeds, yes, no, sigma=SIGMA):
         return yes
     if z <= -sigma:
         return no
-    if needed is None:
-        return "undecided at %s seeds; more seeds cannot decide it (the fit-window " \
-               "systematic is a third of the difference or more)" % seeds
+    if needed is None:    # no difference, or a systematic of a third of it or more
+        return "undecided at %s seeds; no number of seeds decides it at this difference" \
+               % seeds
     return "undecided at %s seeds; needs %d" % (seeds, needed)
 
 
