@@ -87,7 +87,8 @@ def isotropic_crossings(shapes, histogram):
              "seeds": len(v)} for s, v in per_seed.items()]
     t = np.array([r["theta"] for r in rows])
     return {"shapes": rows, "groups": pooled.groups, "mean": float(t.mean()),
-            "median": float(np.median(t)), "sd_over_shapes": float(t.std(ddof=1)),
+            "median": float(np.median(t)),
+            "sd_over_shapes": float(t.std(ddof=1)) if len(t) > 1 else None,
             "range": [float(t.min()), float(t.max())]}
 
 
@@ -151,8 +152,10 @@ def sphere_isotropy(selections, key):
     half = theta < math.pi / 2
     rel = {k: np.asarray([d[name][1] for d in v])[:, half] / ISOTROPIC - 1
            for k, v in spheres.items()}
-    sd = np.array([pool([r[:, b] for r in rel.values()])[0] for b in range(int(half.sum()))])
     dof = pool([r[:, 0] for r in rel.values()])[1]
+    if not dof:
+        return None    # no sphere with two seeds: no error
+    sd = np.array([pool([r[:, b] for r in rel.values()])[0] for b in range(int(half.sum()))])
     mean, n = rel[key].mean(axis=0), len(rel[key])
     se = sd / math.sqrt(n)
     # cross-check: counting errors, counts = fraction * samples, samples ~ Nslab Z

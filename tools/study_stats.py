@@ -20,6 +20,7 @@ import numpy as np
 MIN_DOF = 4
 THIN = 4.0                 # a/c from which a general shape counts as thin
 SIGMA = 3.0                # a verdict needs this many standard errors
+LARGE = 1000               # seeds per point beyond any study: "more than LARGE"
 BOOTSTRAP = 2000
 WINDOWS = (("parabola 3", 3, 2), ("parabola 5", 5, 2), ("parabola 7", 7, 2), ("cubic 7", 7, 3))
 NOMINAL = "parabola 5"
@@ -191,6 +192,9 @@ def verdict(z, needed, seeds, yes, no, sigma=SIGMA):
     if needed is None:    # no difference, or a systematic of a third of it or more
         return "undecided at %s seeds; no number of seeds decides it at this difference" \
                % seeds
+    if needed > LARGE:
+        return "undecided at %s seeds; needs more than %d (the difference measured is " \
+               "near 0)" % (seeds, LARGE)
     return "undecided at %s seeds; needs %d" % (seeds, needed)
 
 

@@ -113,6 +113,8 @@ def asymmetry(base):
         for (e, z) in pooled.values:
             if e > z and (z, e) in pooled.values:
                 a, b = (e, z), (z, e)
+                if pooled.se(a) is None or pooled.se(b) is None:
+                    continue
                 rows.append((pooled.mean(a) - pooled.mean(b),
                              math.hypot(pooled.se(a), pooled.se(b)),
                              pooled.sd(a) ** 2 + pooled.sd(b) ** 2))
@@ -155,7 +157,7 @@ def delta_r_effects(selections, law):
             p, p0 = sel.quantity(q), base.quantity(q)
             shapes = [s for s in p.values if s in p0.values and not (q == "Qzz" and
                                                                     s == (1.0, 1.0))]
-            if not shapes or p.se(shapes[0]) is None:
+            if not shapes or any(p.se(s) is None or p0.se(s) is None for s in shapes):
                 continue
             rows = [(p.mean(s) - p0.mean(s), math.hypot(p.se(s), p0.se(s)),
                      p.sd(s) ** 2 + p0.sd(s) ** 2) for s in shapes]
@@ -195,7 +197,7 @@ def fall_back(sel):
         return None
     z = sel.quantity("Z")
     diag = sorted(s for s in z.values if s[0] == s[1])
-    if len(diag) < 3 or z.se(diag[0]) is None:
+    if len(diag) < 3 or any(z.se(s) is None for s in z.values):
         return None
     k = int(np.argmax([z.mean(s) for s in diag]))
     out = {"peak": list(diag[k]), "end": list(diag[-1])}
