@@ -11,14 +11,15 @@
 * `sphere_isotropy`: the sphere's contact normals against 1/(4 pi): per bin of the upper half
   (the curve is symmetric about pi/2 by construction) the relative deviation with its
   error from the per-bin seed SD pooled over the sphere's deposits of every selection, the
-  largest deviation and chi^2 over the bins.
+  largest deviation and chi^2 over the bins; the same chi^2 with counting errors (a bin's
+  contacts ~ its fraction x Nslab Z) as a check that does not lean on a few seeds.
 """
 import math
 
 import numpy as np
 from scipy import stats
 
-from study_stats import Pooled, pool
+from study_stats import Pooled, equivalent_sigma, pool
 
 ISOTROPIC = 1.0 / (4.0 * math.pi)
 FILES = {"contact_normals": ("contact_histo", False, "fabric_anisotropy"),    # file, rising,
@@ -166,10 +167,14 @@ def sphere_isotropy(selections, key):
     k = int(np.argmax(np.abs(z)))
     chi2 = float(np.sum(z ** 2))
     bins = int(half.sum()) - 1    # the normalisation fixes one combination of the bins
+    chi2_counting = float(np.sum(mean ** 2 * counts)) if known else None
     return {"seeds": n, "dof_of_the_errors": dof, "theta": theta[half].tolist(),
             "deviation": mean.tolist(), "se": se.tolist(),
             "se_counting": (1 / np.sqrt(counts)).tolist() if known else None,
             "largest": {"theta": float(theta[half][k]), "deviation": float(mean[k]),
-                        "se": float(se[k]), "z": float(z[k])},
+                        "se": float(se[k]), "z": float(z[k]),
+                        "z_equivalent": equivalent_sigma(float(z[k]), dof)},
+            "chi2_counting": chi2_counting,
+            "p_counting": float(stats.chi2.sf(chi2_counting, bins)) if known else None,
             "within_10_percent": bool(np.all(np.abs(mean) <= 0.10)),
             "chi2": chi2, "chi2_dof": bins, "p_isotropic": float(stats.chi2.sf(chi2, bins))}

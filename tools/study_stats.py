@@ -14,8 +14,10 @@
 * Significance of a difference and the seeds per point that a 3-sigma verdict needs.
 """
 import math
+import re
 
 import numpy as np
+from scipy import stats
 
 MIN_DOF = 4
 THIN = 4.0                 # a/c from which a general shape counts as thin
@@ -167,35 +169,46 @@ def significance(difference, stat, sys=0.0):
 def seeds_needed(difference, parts, sys=0.0, sigma=SIGMA):
     """seeds per point for `difference` to be `sigma` standard errors, the statistical
     error shrinking as 1/sqrt(seeds): parts [(standard error now, seeds now), ...], one per
-    independent term. None when the difference is decided already, or when the fixed
-    systematic alone is a third of the difference or more (no number of seeds decides it)."""
+    independent term. None when there is no difference, or when the fixed systematic alone
+    is a third of the difference or more (no number of seeds decides it)."""
     if any(se is None for se, _ in parts):
         return None
-    stat = math.sqrt(sum(se * se for se, _ in parts))
-    if abs(significance(difference, stat, sys) or 0.0) >= sigma:
-        return None    # decided already
     room = (difference / sigma) ** 2 - (sys or 0.0) ** 2
     if room <= 0:
         return None
     return max(2, math.ceil(sum(se * se * n for se, n in parts) / room))
 
 
-def verdict(z, needed, seeds, yes, no, sigma=SIGMA):
-    """the wording of a verdict at `sigma`: `yes` (z >= sigma), `no` (z <= -sigma), else
-    undecided with the seeds per point it needs"""
-    if z is None:
-        return "undecided: no error estimate"
-    if z >= sigma:
-        return yes
-    if z <= -sigma:
-        return no
-    if needed is None:    # no difference, or a systematic of a third of it or more
-        return "undecided at %s seeds; no number of seeds decides it at this difference" \
-               % seeds
-    if needed > LARGE:
-        return "undecided at %s seeds; needs more than %d (the difference measured is " \
-               "near 0)" % (seeds, LARGE)
-    return "undecided at %s seeds; needs %d" % (seeds, needed)
+def equivalent_sigma(z, dof):
+    """the normal z of the same two-sided p as Student's t = z with `dof` degrees of freedom
+    (the pooled SD's): a few degrees of freedom widen the tails"""
+    if z is None or not dof:
+        return z
+    p = 2 * stats.t.sf(abs(z), dof)
+    return math.copysign(float(stats.norm.isf(p / 2)), z)
+
+
+def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA):
+    """the verdict at `sigma` on z (taken as Student's t with `dof` degrees of freedom when
+    given): {z, dof, z_equivalent, seeds_needed (None once decided), verdict}"""
+    ze = equivalent_sigma(z, dof)
+    out = {"z": z, "dof": dof, "z_equivalent": ze, "seeds_needed": None}
+    if ze is None:
+        out["verdict"] = "undecided: no error estimate"
+    elif ze >= sigma:
+        out["verdict"] = yes
+    elif ze <= -sigma:
+        out["verdict"] = no
+    elif needed is None:    # no difference, or a systematic of a third of it or more
+        out["verdict"] = ("undecided at %s seeds; no number of seeds decides it at this "
+                          "difference" % seeds)
+    else:
+        needed = max(needed, max(int(k) for k in re.findall(r"\d+", str(seeds))) + 1)
+        out["seeds_needed"] = needed
+        out["verdict"] = ("undecided at %s seeds; needs more than %d (the difference measured "
+                          "is near 0)" % (seeds, LARGE) if needed > LARGE else
+                          "undecided at %s seeds; needs %d" % (seeds, needed))
+    return out
 
 
 def sign_test(diffs):

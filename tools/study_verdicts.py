@@ -19,7 +19,7 @@ import numpy as np
 from scipy import stats
 
 from study_histograms import crossings_both, sphere_isotropy
-from study_stats import MIN_DOF, SIGMA, THIN, seeds_needed, sign_test, significance, verdict
+from study_stats import MIN_DOF, SIGMA, THIN, decide, seeds_needed, sign_test, significance
 
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
@@ -73,22 +73,24 @@ def ridge(maxima, base):
         need = seeds_needed(d, [(diag.get("phi_max_sd"), na), (other.get("phi_max_sd"), nb)],
                             sys)
         yes, no = "the diagonal's is higher", "the %s line's is higher" % name
-        fitted = {"difference": d, "stat": stat, "sys": sys, "per_window": per_window, "z": z,
-                  "seeds_needed": need, "verdict": verdict(z, need, seeds, yes, no)}
+        dof = min(base.pooled.dof(sa), base.pooled.dof(sb))
+        fitted = dict({"difference": d, "stat": stat, "sys": sys, "per_window": per_window},
+                      **decide(z, need, seeds, yes, no, dof))
         ea, eb = base.standard_error(sa), base.standard_error(sb)
         dh = base.pooled.mean(sa) - base.pooled.mean(sb)
         se = math.hypot(ea, eb) if ea is not None and eb is not None else None
         z = significance(dh, se)
         need = seeds_needed(dh, [(ea, na), (eb, nb)])
-        out[name] = {"fitted": fitted, "highest": {
-            "diagonal": list(sa), "other": list(sb), "difference": dh, "se": se, "z": z,
-            "seeds_needed": need, "verdict": verdict(z, need, seeds, yes, no)}}
+        out[name] = {"fitted": fitted, "highest": dict(
+            {"diagonal": list(sa), "other": list(sb), "difference": dh, "se": se},
+            **decide(z, need, seeds, yes, no, dof))}
     return out
 
 
-def mean_of_differences(rows, seeds):
-    """rows [(difference, se, var at one seed)]: the mean, its error, its significance,
-    the sign test, chi^2 and the seeds per point a 3-sigma mean needs"""
+def mean_of_differences(rows, seeds, dof, yes, no):
+    """rows [(difference, se, var at one seed)]: the mean, its error, its significance
+    (Student's t with dof, the fewest of the pooled SDs'), the sign test, chi^2 and the
+    verdict (with the seeds per point a 3-sigma mean needs)"""
     d = np.array([r[0] for r in rows])
     n = len(rows)
     se = math.sqrt(sum(r[1] ** 2 for r in rows)) / n
@@ -98,10 +100,10 @@ def mean_of_differences(rows, seeds):
     chi2 = float(sum((r[0] / r[1]) ** 2 for r in rows))
     k, m, p = sign_test(d)
     need = seeds_needed(mean, [(se, var1 / se ** 2)])    # se^2 * seeds = var1
-    return {"n": n, "mean": mean, "se": se, "z": z, "positive": k, "nonzero": m,
-            "sign_p": p, "chi2": chi2, "chi2_p": float(stats.chi2.sf(chi2, n)),
-            "sd_over_shapes": float(d.std(ddof=1)) if n > 1 else None,
-            "seeds_needed": need, "seeds": seeds}
+    return dict({"n": n, "mean": mean, "se": se, "positive": k, "nonzero": m,
+                 "sign_p": p, "chi2": chi2, "chi2_p": float(stats.chi2.sf(chi2, n)),
+                 "sd_over_shapes": float(d.std(ddof=1)) if n > 1 else None, "seeds": seeds},
+                **decide(z, need, seeds, yes, no, dof))
 
 
 def asymmetry(base):
@@ -121,12 +123,11 @@ def asymmetry(base):
                 pairs.append([e, z])
         if not rows:
             continue
-        m = mean_of_differences(rows, "2-3")
+        dof = min(g["dof"] for g in pooled.groups.values())
+        m = mean_of_differences(rows, "2-3", dof, "asymmetric: larger for eta > zeta",
+                                "asymmetric: larger for eta < zeta")
         k = int(np.argmax([abs(r[0]) for r in rows]))
         m["largest"] = {"pair": pairs[k], "difference": rows[k][0], "se": rows[k][1]}
-        m["verdict"] = verdict(m["z"], m["seeds_needed"], "2-3",
-                               "asymmetric: larger for eta > zeta",
-                               "asymmetric: larger for eta < zeta")
         out[q] = m
     return out
 
@@ -161,10 +162,10 @@ def delta_r_effects(selections, law):
                 continue
             rows = [(p.mean(s) - p0.mean(s), math.hypot(p.se(s), p0.se(s)),
                      p.sd(s) ** 2 + p0.sd(s) ** 2) for s in shapes]
-            m = mean_of_differences(rows, "2-3")
+            dof = min(g["dof"] for g in list(p.groups.values()) + list(p0.groups.values()))
+            m = mean_of_differences(rows, "2-3", dof, "larger at delta_r %g" % dr,
+                                    "smaller at delta_r %g" % dr)
             m["relative"] = m["mean"] / float(np.mean([abs(p0.mean(s)) for s in shapes]))
-            m["verdict"] = verdict(m["z"], m["seeds_needed"], "2-3",
-                                   "larger at delta_r %g" % dr, "smaller at delta_r %g" % dr)
             entry[q] = m
         out.append(entry)
     return out
@@ -184,9 +185,9 @@ def slope_entry(z, shapes):
                                [z.se(s) for s in shapes])
     seeds = len(z.values[shapes[0]])
     need = seeds_needed(slope, [(se, seeds)])
-    return {"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes), "slope": slope,
-            "se": se, "z": slope / se, "seeds_needed": need,
-            "verdict": verdict(-slope / se, need, seeds, "falls", "rises")}
+    return dict({"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes),
+                 "slope": slope, "se": se},
+                **decide(slope / se, need, seeds, "rises", "falls", min(map(z.dof, shapes))))
 
 
 def fall_back(sel):
@@ -215,9 +216,9 @@ def fall_back(sel):
             continue
         d, se = z.mean(a) - z.mean(b), math.hypot(z.se(a), z.se(b))
         need = seeds_needed(d, [(z.se(a), len(z.values[a])), (z.se(b), len(z.values[b]))])
-        out[key] = {"shapes": [list(a), list(b)], "difference": d, "se": se, "z": d / se,
-                    "seeds_needed": need,
-                    "verdict": verdict(d / se, need, len(z.values[a]), "higher", "lower")}
+        out[key] = dict({"shapes": [list(a), list(b)], "difference": d, "se": se},
+                        **decide(d / se, need, len(z.values[a]), "higher", "lower",
+                                 min(z.dof(a), z.dof(b))))
     return out
 
 

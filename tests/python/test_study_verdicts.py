@@ -85,12 +85,18 @@ def test_seeds_needed_and_the_sign_test():
     # (2 + 2) 1e-6 / seeds is (0.003 / 3)^2: 4 seeds
     assert study_stats.seeds_needed(0.003, [(0.001, 2), (0.001, 2)]) == 4
     assert study_stats.seeds_needed(0.003, [(0.001, 2)], sys=0.0011) is None    # sys > d/3
-    assert study_stats.seeds_needed(0.01, [(0.001, 2)]) is None                 # decided
+    assert study_stats.seeds_needed(0.0, [(0.001, 2)]) is None                  # no difference
     k, n, p = study_stats.sign_test([1] * 22 + [-1] * 6)
     assert (k, n) == (22, 28)
     assert p == pytest.approx(stats.binomtest(22, 28).pvalue, rel=1e-9)
-    assert "needs 8" in study_stats.verdict(2.1, 8, 2, "yes", "no")
-    assert study_stats.verdict(-3.2, None, 2, "yes", "no") == "no"
+    assert study_stats.decide(2.1, 8, 2, "yes", "no")["verdict"].endswith("needs 8")
+    assert study_stats.decide(-3.2, None, 2, "yes", "no")["verdict"] == "no"
+    # Student's t: 3.03 standard errors from an SD of 10 degrees of freedom are p = 0.013,
+    # 2.5 sigma: undecided, and at least one seed more than now
+    d = study_stats.decide(3.03, 2, 3, "yes", "no", dof=10)
+    assert d["z_equivalent"] == pytest.approx(stats.norm.isf(stats.t.sf(3.03, 10)), rel=1e-9)
+    assert 2.4 < d["z_equivalent"] < 2.6 and d["seeds_needed"] == 4
+    assert study_stats.equivalent_sigma(3.0, 10 ** 6) == pytest.approx(3.0, abs=1e-4)
 
 
 def selection(shift_qzz=0.0, asym=0.0):
