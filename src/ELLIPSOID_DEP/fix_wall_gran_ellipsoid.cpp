@@ -67,19 +67,20 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
       wall_material_given = true;
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
-      if (particle_law.normal.kind != NormalModel::Kind::HertzMaterial)
+      if (!std::holds_alternative<HertzMaterialNormal>(particle_law.normal))
         error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: wall_material needs hertz/material");
       ForceLaw wall_side = particle_law;
+      auto &wall_normal = std::get<HertzMaterialNormal>(wall_side.normal);
       const std::string value = arg[iarg + 1];
       if (value == "rigid") {
         // an undeformable wall: no compliance, 1/E* = (1 - nu^2)/E of the particle
-        wall_side.normal.youngs = HUGE_VAL;
+        wall_normal.youngs = HUGE_VAL;
         iarg += 2;
       } else if (utils::is_double(value)) {
         if (iarg + 3 > narg)
           utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid wall_material E nu", error);
-        wall_side.normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-        wall_side.normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        wall_normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+        wall_normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
         message = wall_side.validate();
         if (!message.empty())
           error->all(FLERR, iarg, "Fix wall/gran/ellipsoid wall_material: {}", message);
@@ -89,8 +90,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
         message = lookup(value, material);
         if (!message.empty())
           error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid wall_material: {}", message);
-        wall_side.normal.youngs = material.youngs;
-        wall_side.normal.poisson = material.poisson;
+        wall_normal.youngs = material.youngs;
+        wall_normal.poisson = material.poisson;
         iarg += 2;
       }
       // the pair's mixing rule: the restitution stays the particle law's
