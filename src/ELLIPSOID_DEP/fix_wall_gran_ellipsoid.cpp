@@ -258,7 +258,7 @@ void FixWallGranEllipsoid::setup(int vflag)
                    "than half their smallest semi-axis at setup",
                    all[1]);
 
-  // setup forces must not advance the tangential history
+  // setup forces must not advance the law's history
   history_update = false;
   post_force(vflag);
   history_update = true;
@@ -314,8 +314,8 @@ void FixWallGranEllipsoid::wall_forces()
         atoms.add_motion(i, state);
         moving = true;
       }
-      const TangentialHistory tangential(history, history_update);
-      const ContactForce result = law.compute(g, wall_motion(state, g.point), dt, tangential.get());
+      const LawHistory law_history(history, law.history_size(), history_update);
+      const ContactForce result = law.compute(g, wall_motion(state, g.point), dt, law_history.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];

@@ -67,9 +67,9 @@ ContactForce PairGranularEllipsoid::pair_force(int i, int j, int law, double *hi
                      atom->mask[j] & freeze_group_bit);
   // setup and single() look at the stored history without advancing it (dt = 0, on a copy),
   // as pair granular does, so a restart reproduces the forces it was written with
-  const TangentialHistory tangential(
-      force_law.history_size() > 0 ? PairCache(history).tangential() : nullptr, history_update);
-  return force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential.get());
+  const LawHistory law_history(PairHistory(history).law(), force_law.history_size(),
+                               history_update);
+  return force_law.compute(geometry, motion, history_update ? update->dt : 0.0, law_history.get());
 }
 
 /* ---------------------------------------------------------------------- */
@@ -103,15 +103,15 @@ inline void prefetch_candidate(const double *history, int stride, const Ellipsoi
   prefetch_bytes(state, sizeof(EllipsoidState));
 }
 
-// A pair whose bounding spheres are apart (true): its cache and tangential history cleared,
-// not kept at the next list build, counted as a bounding reject. tangential_slots is a
+// A pair whose bounding spheres are apart (true): its history cleared, the law's law_slots
+// included, not kept at the next list build, counted as a bounding reject. law_slots is a
 // local of the caller's: a member would be reloaded after every store through touch.
-inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch,
-                            bool tangential_slots, PipelineCounters &counters)
+inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch, int law_slots,
+                            PipelineCounters &counters)
 {
   if (!reject_apart(t, history, counters)) return false;
   touch = 0;
-  if (tangential_slots) PairCache(history).clear_tangential();
+  PairHistory(history).clear_law<ForceLaw::MAX_HISTORY_SIZE>(law_slots);
   return true;
 }
 }    // namespace
@@ -133,7 +133,7 @@ void PairGranularEllipsoid::find_candidates()
   const double skin = neighbor->skin * (1.0 + 1e-10);
   const EllipsoidAtoms atoms(atom);
   double **x = atom->x;
-  const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
+  const int law_slots = pipeline.law_slots;
   candidate_jj.clear();
   candidate_first.assign(inum + 1, 0);
   state_needed.assign(nall, 0);
@@ -150,7 +150,7 @@ void PairGranularEllipsoid::find_candidates()
           bounding_test(ci, ri, Vec3(x[j][0], x[j][1], x[j][2]), atoms.bounding_radius(j));
       const bool beyond_skin = t.dist > t.reach + skin;
       if (beyond_skin &&
-          forget_if_apart(t, pair_history(i, jj), touch[jj], tangential_slots, counters)) {
+          forget_if_apart(t, pair_history(i, jj), touch[jj], law_slots, counters)) {
         ++set_aside;
         continue;
       }
@@ -226,7 +226,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   // loop invariants in locals: the calls in the loop would have them reloaded for every pair
   const EllipsoidState *const state = states.data();
   const int stride = size_history;
-  const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
+  const int law_slots = pipeline.law_slots;
 
   const int *const candidates = candidate_jj.data();
   const bool gaps = set_aside > 0;
@@ -264,16 +264,16 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       }
       // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
       if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
-                          tangential_slots, counters))
+                          law_slots, counters))
         continue;
 
       const ContactGeometry geometry =
           evaluate_pair(state[i].shape, state[j].shape, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
-      PairCache cache(history);
-      touch[jj] = cache.in_use() ? 1 : 0;
+      PairHistory row(history);
+      touch[jj] = row.in_use() ? 1 : 0;
       if (!in_contact(geometry)) {
-        if (tangential_slots) cache.clear_tangential();
+        row.clear_law<ForceLaw::MAX_HISTORY_SIZE>(law_slots);
         continue;
       }
 

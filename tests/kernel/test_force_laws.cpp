@@ -4,6 +4,7 @@
 // rows. The expected values are computed here from the equations of
 // doc/pair_granular_ellipsoid.rst, not with the laws' own helpers.
 #include "ellipsoid_force_law.h"
+#include "ellipsoid_pair_history.h"
 
 #include <gtest/gtest.h>
 
@@ -315,4 +316,45 @@ TEST(ForceLaws, MaterialNames)
   EXPECT_EQ(parse_force_law({"hertz/material", "glass", "damping", "coeff_restitution"}, law, error,
                             lookup),
             -1);
+}
+
+// The history a law keeps follows from its models, sits after the pipeline's slots in a pair's
+// row (layout 3: 10 + 3 with a tangential history) and obeys the swap rule: the pair seen
+// from j, with the negated history, gets the negated force and history.
+TEST(ForceLaws, HistorySlotsOfTheModels)
+{
+  EXPECT_EQ(parsed("hertz 1 1 tangential viscous 1 rolling constant 0.1").history_size(), 0);
+  const ForceLaw law = parsed("hertz 1e5 0 tangential history 1e3 0.5");
+  ASSERT_EQ(law.history_size(), HistoryTangential::HISTORY_SIZE);
+  EXPECT_EQ(ForceLaw::MAX_HISTORY_SIZE, HistoryTangential::HISTORY_SIZE);
+  EXPECT_EQ(PairHistory::LAYOUT_VERSION, 3);
+  EXPECT_EQ(PairHistory::size(law.history_size()), 13);
+  EXPECT_EQ(PairHistory::LAW, PairHistory::PIPELINE_SIZE);
+
+  double row[13], swapped[13];
+  for (int k = 0; k < 13; ++k) row[k] = 0.01 * (k + 1);
+  PairHistory::swapped(row, swapped, 13);
+  ContactMotion from_i = motion(Vec3(0.3, -0.2, 0.1)), from_j;
+  from_i.omega_i = Vec3(0.5, 1, -2);
+  from_j.v_j = from_i.v_i;
+  from_j.omega_j = from_i.omega_i;
+  from_j.branch_i = from_i.branch_j;
+  from_j.branch_j = from_i.branch_i;
+  from_j.effective_mass = kMass;
+  ContactGeometry seen_from_j = geometry();
+  seen_from_j.normal = -seen_from_j.normal;
+  const ContactForce f = law.compute(geometry(), from_i, 1e-4, PairHistory(row).law());
+  const ContactForce g = law.compute(seen_from_j, from_j, 1e-4, PairHistory(swapped).law());
+  EXPECT_EQ(g.force_i, -f.force_i);
+  for (int k = PairHistory::LAW; k < 13; ++k) EXPECT_EQ(swapped[k], -row[k]) << k;
+
+  // a look (setup forces, single()) does not advance the stored history
+  double stored[3] = {1e-4, 0, 0}, advanced[3] = {1e-4, 0, 0};
+  const LawHistory look(stored, law.history_size(), false);
+  const ContactForce looked = law.compute(geometry(), from_i, 1e-4, look.get());
+  EXPECT_EQ(looked.force_i, law.compute(geometry(), from_i, 1e-4, advanced).force_i);
+  EXPECT_EQ(stored[0], 1e-4);
+  EXPECT_NE(advanced[1], 0.0);
+  const LawHistory step(stored, law.history_size(), true);
+  EXPECT_EQ(step.get(), stored);
 }

@@ -63,6 +63,26 @@ struct ForceLaw {
   const char *elastic_law() const;
 };
 
+// The law's history handed to ForceLaw::compute, which advances it in place: the stored
+// doubles, or a scratch copy for a look that must not change them (setup forces, single()).
+class LawHistory {
+ public:
+  LawHistory(double *stored, int size, bool advance) : p(stored)
+  {
+    if (stored && !advance) {
+      for (int k = 0; k < size; ++k) scratch[k] = stored[k];
+      p = scratch.data();
+    }
+  }
+  LawHistory(const LawHistory &) = delete;
+  LawHistory &operator=(const LawHistory &) = delete;
+  double *get() const { return p; }
+
+ private:
+  std::array<double, ForceLaw::MAX_HISTORY_SIZE> scratch;
+  double *p;
+};
+
 // Answers a material name: an empty string and the material, or the reason it cannot
 // (unknown name, no unit conversion). Supplied by the caller, so this file stays free of I/O.
 using MaterialLookup = std::function<std::string(const std::string &name, Material &material)>;
