@@ -190,7 +190,7 @@ TEST(ForceLaws, HistoryTangentialSpringAndCoulombCap)
   const ForceLaw law = parsed("hertz 1e5 0 tangential history 1e3 0.5");
   ASSERT_EQ(law.history_size(), 3);
   const double fn = 1e5 * std::pow(kOverlap, 1.5), dt = 1e-4;
-  double s[3] = {0, 0, 0};
+  double s[HistoryTangential::HISTORY_SIZE] = {};
   // sticking: F_t = -kt v_t dt
   ContactForce f = law.compute(geometry(), motion(Vec3(1e-3, 0, 0)), dt, s);
   EXPECT_DOUBLE_EQ(s[0], 1e-3 * dt);
@@ -202,7 +202,7 @@ TEST(ForceLaws, HistoryTangentialSpringAndCoulombCap)
   EXPECT_NEAR(Vec3(s[0], s[1], s[2]).norm(), cap / 1e3, 1e-14 * cap);
   EXPECT_DOUBLE_EQ(f.force_i.y() / f.force_i.x(), s[1] / s[0]);
   // a turned normal: the displacement on the new tangent plane, at its length
-  double turned[3] = {2e-6, 0, 0};
+  double turned[HistoryTangential::HISTORY_SIZE] = {2e-6};
   ContactGeometry g = geometry();
   g.normal = Vec3(1, 0, 1).normalized();
   law.compute(g, motion(Vec3::Zero()), dt, turned);
@@ -328,12 +328,13 @@ TEST(ForceLaws, HistorySlotsOfTheModels)
   ASSERT_EQ(law.history_size(), HistoryTangential::HISTORY_SIZE);
   EXPECT_EQ(ForceLaw::MAX_HISTORY_SIZE, HistoryTangential::HISTORY_SIZE);
   EXPECT_EQ(PairHistory::LAYOUT_VERSION, 3);
-  EXPECT_EQ(PairHistory::size(law.history_size()), 13);
+  constexpr int ROW = PairHistory::size(HistoryTangential::HISTORY_SIZE);
+  EXPECT_EQ(ROW, 13);
   EXPECT_EQ(PairHistory::LAW, PairHistory::PIPELINE_SIZE);
 
-  double row[13], swapped[13];
-  for (int k = 0; k < 13; ++k) row[k] = 0.01 * (k + 1);
-  PairHistory::swapped(row, swapped, 13);
+  double row[ROW], swapped[ROW];
+  for (int k = 0; k < ROW; ++k) row[k] = 0.01 * (k + 1);
+  PairHistory::swapped(row, swapped, ROW);
   ContactMotion from_i = motion(Vec3(0.3, -0.2, 0.1)), from_j;
   from_i.omega_i = Vec3(0.5, 1, -2);
   from_j.v_j = from_i.v_i;
@@ -346,10 +347,11 @@ TEST(ForceLaws, HistorySlotsOfTheModels)
   const ContactForce f = law.compute(geometry(), from_i, 1e-4, PairHistory(row).law());
   const ContactForce g = law.compute(seen_from_j, from_j, 1e-4, PairHistory(swapped).law());
   EXPECT_EQ(g.force_i, -f.force_i);
-  for (int k = PairHistory::LAW; k < 13; ++k) EXPECT_EQ(swapped[k], -row[k]) << k;
+  for (int k = PairHistory::LAW; k < ROW; ++k) EXPECT_EQ(swapped[k], -row[k]) << k;
 
   // a look (setup forces, single()) does not advance the stored history
-  double stored[3] = {1e-4, 0, 0}, advanced[3] = {1e-4, 0, 0};
+  double stored[HistoryTangential::HISTORY_SIZE] = {1e-4},
+         advanced[HistoryTangential::HISTORY_SIZE] = {1e-4};
   const LawHistory look(stored, law.history_size(), false);
   const ContactForce looked = law.compute(geometry(), from_i, 1e-4, look.get());
   EXPECT_EQ(looked.force_i, law.compute(geometry(), from_i, 1e-4, advanced).force_i);
