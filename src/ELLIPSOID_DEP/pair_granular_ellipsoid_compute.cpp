@@ -103,9 +103,9 @@ inline void prefetch_candidate(const double *history, int stride, const Ellipsoi
   prefetch_bytes(state, sizeof(EllipsoidState));
 }
 
-// A pair whose bounding spheres are apart (true): its history cleared, the law's law_slots
-// included, not kept at the next list build, counted as a bounding reject. law_slots is a
-// local of the caller's: a member would be reloaded after every store through touch.
+// A pair whose bounding spheres are apart (true): its history cleared (the law's law_slots
+// too), not kept at the next list build, counted as a bounding reject. law_slots is a local
+// of the caller's: a member would be reloaded after every store through touch.
 inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch, int law_slots,
                             PipelineCounters &counters)
 {
