@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Draw the paper's figures from a study's results table (tools/study_table.py).
 
-    ./ellipsoid-dep python tools/plot_figures.py examples/study/results/table.csv [--out DIR]
+    ./ellipsoid-dep python tools/plot_figures.py results/study/table.csv [--out DIR]
                                                  [--law NAME] [--N N]
 
 The table holds one row per point (eta, zeta, delta_r, N, tangential law) with the mean and

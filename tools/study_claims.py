@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The numbers behind the paper's claims, from a study's results folder (doc/study.md).
 
-    ./ellipsoid-dep python tools/study_claims.py examples/study/results [--law coulomb] [--N 3000]
+    ./ellipsoid-dep python tools/study_claims.py results/study [--law coulomb] [--N 3000]
 
 Reads deposits.csv (tools/study_table.py) and the histograms of every deposit at N and writes
 claims.json into the results folder (and prints it as markdown). The deposits are taken one

@@ -11,7 +11,6 @@
 
 #include "compute_angle_histo.h"
 
-#include "compute_packing_ellipsoid.h"
 
 #include "atom.h"
 #include "error.h"
@@ -107,7 +106,8 @@ void ComputeAngleHisto::init()
   if (slab_id) {
     slab_compute = modify->get_compute_by_id(slab_id);
     if (!slab_compute) error->all(FLERR, "Compute {}: no compute with ID {}", name, slab_id);
-    if (strcmp(slab_compute->style, "packing/ellipsoid") != 0)
+    if (strcmp(slab_compute->style, "packing/ellipsoid") != 0 || !slab_compute->vector_flag ||
+        slab_compute->size_vector < SLAB_ZHI_ELEMENT)
       error->all(FLERR, "Compute {}: slab compute {} is not packing/ellipsoid", name, slab_id);
   }
 }
@@ -170,8 +170,8 @@ void ComputeAngleHisto::tally()
       slab_compute->compute_vector();
       slab_compute->invoked_flag |= Compute::INVOKED_VECTOR;
     }
-    zlo = slab_compute->vector[ComputePackingEllipsoid::ZLO];
-    zhi = slab_compute->vector[ComputePackingEllipsoid::ZHI];
+    zlo = slab_compute->vector[SLAB_ZLO_ELEMENT - 1];
+    zhi = slab_compute->vector[SLAB_ZHI_ELEMENT - 1];
   }
   const bool use_slab = have_zlo || have_zhi || slab_compute;
 

@@ -17,6 +17,11 @@ namespace LAMMPS_NS {
 
 class ComputeAngleHisto : public Compute {
  public:
+  // the slab keyword reads these elements of compute packing/ellipsoid's vector, as a c_ID[5]
+  // and c_ID[6] reference would: its documented zlo and zhi (its doc page; test_computes.py
+  // checks the histograms against zlo/zhi given as numbers)
+  static constexpr int SLAB_ZLO_ELEMENT = 5, SLAB_ZHI_ELEMENT = 6;
+
   ~ComputeAngleHisto() override;
   void init() override;
   void compute_vector() override;

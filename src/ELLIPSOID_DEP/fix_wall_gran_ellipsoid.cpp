@@ -2,7 +2,7 @@
    ELLIPSOID_DEP: fix wall/gran/ellipsoid (see doc/fix_wall_gran_ellipsoid.rst)
 
    Each wall is a plane; the particle is body i and the wall body j at rest (v_j = omega_j
-   = 0, effective mass m_i). The geometry comes from EllipsoidDep::ellipsoid_plane_contact
+   = 0, effective mass m_i). The geometry comes from EllipsoidDep::wall_contact
    and the force from ForceLaw::compute, the one definition the pair style uses too.
 ------------------------------------------------------------------------- */
 
@@ -98,6 +98,14 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
       mix_laws(particle_law, wall_side, law);
       continue;
     }
+    if (word == "wiggle" || word == "shear") {
+      iarg += parse_motion(iarg, narg, arg);
+      continue;
+    }
+    if (word == "servo") {
+      iarg += parse_servo(iarg, narg, arg);
+      continue;
+    }
     if (word == "impact_velocity") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
       impact_velocity = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -116,7 +124,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     if (dim < 0)
       error->all(FLERR, iarg,
                  "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane, zplane, wall_material, impact_velocity, or a force-law word)",
+                 "yplane, zplane, wall_material, wiggle, shear, servo, impact_velocity, "
+                 "or a force-law word)",
                  word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
@@ -132,13 +141,13 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
                    "Fix wall/gran/ellipsoid {} {}: expected a number or "
                    "NULL, got '{}'",
                    word, k == 0 ? "lo" : "hi", value);
-      Wall w;
-      w.dim = dim;
-      w.side = k == 0 ? -1 : 1;
-      w.coord = utils::numeric(FLERR, value, false, lmp);
+      // lo: solid below the plane, hi: solid above it
+      const double coord = utils::numeric(FLERR, value, false, lmp);
+      WallSurface w;
+      w.shape = WallShape::Plane;
       w.normal = Vec3::Zero();
       w.normal[dim] = k == 0 ? 1.0 : -1.0;
-      w.offset = k == 0 ? w.coord : -w.coord;
+      w.offset = k == 0 ? coord : -coord;
       walls.push_back(w);
     }
     const char *lo = arg[iarg + 1], *hi = arg[iarg + 2];
@@ -150,10 +159,25 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   }
   if (walls.empty())
     error->all(FLERR, "Fix wall/gran/ellipsoid: every wall is NULL; nothing to do");
+  if (motion.kind == Motion::Kind::Shear)
+    for (const WallSurface &w : walls)
+      if (w.normal[motion.dim] != 0.0)
+        error->all(FLERR,
+                   "Fix wall/gran/ellipsoid: shear along {} would move a wall normal to {} "
+                   "into the particles (use wiggle)",
+                   "xyz"[motion.dim], "xyz"[motion.dim]);
+  if (motion.kind == Motion::Kind::Servo && walls.size() != 1)
+    error->all(FLERR, "Fix wall/gran/ellipsoid servo moves one wall: give one lo or hi wall (the "
+                      "other walls in a fix of their own)");
+  for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
+  restart_global = motion.kind != Motion::Kind::None ? 1 : 0;
+  motion.time_origin = update->ntimestep;
+  wall_velocity = Vec3::Zero();
 
   const int nwalls = static_cast<int>(walls.size());
   vector_flag = 1;
-  size_vector = 3 * nwalls;
+  // a servo's wall also reports where it is (its coordinate along its normal's dimension)
+  size_vector = 3 * nwalls + (motion.kind == Motion::Kind::Servo ? 1 : 0);
   global_freq = 1;
   extvector = 1;
   create_attribute = 1;
@@ -228,6 +252,7 @@ void FixWallGranEllipsoid::update_contact_times()
 
 void FixWallGranEllipsoid::setup(int vflag)
 {
+  if (motion.kind != Motion::Kind::Servo) move_walls();
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal;
   double counts[2] = {0.0, 0.0};
@@ -236,11 +261,11 @@ void FixWallGranEllipsoid::setup(int vflag)
     if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix wall/gran/ellipsoid", i, groupbit);
     const Ellipsoid e = atoms.ellipsoid(i);
     const double thin = e.semi_axes.minCoeff();
-    for (const Wall &w : walls) {
-      if (w.normal.dot(e.center) - w.offset <= 0.0) {
+    for (const WallSurface &w : walls) {
+      if (wall_clearance(w, e.center) <= 0.0) {
         counts[0] += 1.0;
       } else {
-        const ContactGeometry g = ellipsoid_plane_contact(e, w.normal, w.offset);
+        const ContactGeometry g = wall_contact(e, w);
         if (g.overlap > 0.5 * thin) counts[1] += 1.0;
       }
     }
@@ -274,6 +299,8 @@ void FixWallGranEllipsoid::post_force(int /*vflag*/)
 void FixWallGranEllipsoid::wall_forces()
 {
   force_flag = 0;
+  // a servo moves at time steps only (setup forces look without moving anything)
+  if (history_update || motion.kind != Motion::Kind::Servo) move_walls();
   std::fill(wall_force.begin(), wall_force.end(), 0.0);
 
   const EllipsoidAtoms atoms(atom);
@@ -294,17 +321,16 @@ void FixWallGranEllipsoid::wall_forces()
     EllipsoidState state;
 
     for (int k = 0; k < nwalls; k++) {
-      const Wall &w = walls[k];
+      const WallSurface &w = walls[k];
       double *history = wall_history(i, k);
-      // bounding sphere clear of the plane: no contact
-      const double height = w.normal[w.dim] * x[i][w.dim] - w.offset;
+      // bounding sphere clear of the wall: no contact
       ContactGeometry g;
-      if (height < bound) {
+      if (wall_clearance(w, Vec3(x[i][0], x[i][1], x[i][2])) < bound) {
         if (!built) {
           state.shape = atoms.ellipsoid(i);
           built = true;
         }
-        g = ellipsoid_plane_contact(state.shape, w.normal, w.offset);
+        g = wall_contact(state.shape, w);
       }
       if (g.status != Status::Overlapping) {
         if (history && history_update) std::fill_n(history, law.history_size(), 0.0);
@@ -314,14 +340,25 @@ void FixWallGranEllipsoid::wall_forces()
         atoms.add_motion(i, state);
         moving = true;
       }
+      // setup forces look at the stored history without advancing it (on a copy, dt 0), as
+      // the pair's do: a step's displacement there would push the particle once, unrecorded
       const LawHistory law_history(history, law.history_size(), history_update);
-      const ContactForce result = law.compute(g, wall_motion(state, g.point), dt, law_history.get());
+      const ContactForce result = law.compute(g, wall_motion(state, g.point, wall_velocity),
+                                              history_update ? dt : 0.0, law_history.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];
         wall_force[3 * k + d] -= result.force_i[d];
       }
     }
+  }
+  // the servo's measure for the next step: the particles' push on its wall, along -n
+  if (motion.kind == Motion::Kind::Servo) {
+    MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
+                  MPI_DOUBLE, MPI_SUM, world);
+    force_flag = 1;
+    motion.force = -Vec3(wall_force_all[0], wall_force_all[1], wall_force_all[2])
+                        .dot(walls[0].normal);
   }
 }
 
@@ -337,6 +374,11 @@ double FixWallGranEllipsoid::compute_vector(int n)
                   MPI_DOUBLE, MPI_SUM, world);
     force_flag = 1;
   }
+  if (n == 3 * static_cast<int>(walls.size())) {    // the servo's wall coordinate
+    const Vec3 &normal = walls[0].normal;
+    for (int d = 0; d < 3; d++)
+      if (normal[d] != 0.0) return walls[0].offset / normal[d];
+  }
   return wall_force_all[n];
 }
 
@@ -345,68 +387,4 @@ double FixWallGranEllipsoid::compute_vector(int n)
 double FixWallGranEllipsoid::memory_usage()
 {
   return static_cast<double>(atom->nmax) * size_history * sizeof(double);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixWallGranEllipsoid::grow_arrays(int nmax)
-{
-  if (size_history) memory->grow(history_one, nmax, size_history, "wall/gran/ellipsoid:history");
-}
-
-void FixWallGranEllipsoid::copy_arrays(int i, int j, int /*delflag*/)
-{
-  for (int m = 0; m < size_history; m++) history_one[j][m] = history_one[i][m];
-}
-
-void FixWallGranEllipsoid::set_arrays(int i)
-{
-  for (int m = 0; m < size_history; m++) history_one[i][m] = 0.0;
-}
-
-int FixWallGranEllipsoid::pack_exchange(int i, double *buf)
-{
-  for (int m = 0; m < size_history; m++) buf[m] = history_one[i][m];
-  return size_history;
-}
-
-int FixWallGranEllipsoid::unpack_exchange(int nlocal, double *buf)
-{
-  for (int m = 0; m < size_history; m++) history_one[nlocal][m] = buf[m];
-  return size_history;
-}
-
-int FixWallGranEllipsoid::pack_restart(int i, double *buf)
-{
-  if (!size_history) return 0;
-  // buf[0] = count including itself, the convention other fixes unpack by
-  buf[0] = size_history + 1;
-  for (int m = 0; m < size_history; m++) buf[m + 1] = history_one[i][m];
-  return size_history + 1;
-}
-
-void FixWallGranEllipsoid::unpack_restart(int nlocal, int nth)
-{
-  if (!size_history) return;
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  // another tangential model or number of walls in the run that wrote the file
-  if (static_cast<int>(extra[nlocal][m]) != size_history + 1)
-    error->one(FLERR,
-               "Fix wall/gran/ellipsoid: the restart file holds {} history values per atom, "
-               "this fix needs {} (tangential model or walls changed)",
-               static_cast<int>(extra[nlocal][m]) - 1, size_history);
-  m++;
-  for (int k = 0; k < size_history; k++) history_one[nlocal][k] = extra[nlocal][m++];
-}
-
-int FixWallGranEllipsoid::size_restart(int /*nlocal*/)
-{
-  return size_history ? size_history + 1 : 0;
-}
-
-int FixWallGranEllipsoid::maxsize_restart()
-{
-  return size_history ? size_history + 1 : 0;
 }

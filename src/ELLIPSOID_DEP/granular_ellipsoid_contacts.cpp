@@ -9,7 +9,7 @@
 #include "force.h"
 #include "update.h"
 
-#include "pair_granular_ellipsoid.h"
+#include "pair.h"
 
 using namespace LAMMPS_NS;
 
@@ -38,13 +38,14 @@ void refuse_other_sub_styles(LAMMPS *lmp, const char *who)
 
 ContactList *ContactList::request(LAMMPS *lmp, const char *who)
 {
-  auto *pair =
-      dynamic_cast<PairGranularEllipsoid *>(lmp->force->pair_match("granular/ellipsoid", 1));
-  if (!pair) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
+  // the pair hands out its list through Pair::extract: this file does not know the pair
+  Pair *pair = lmp->force->pair_match("granular/ellipsoid", 1);
+  int dim = 0;
+  auto *contacts = pair ? static_cast<ContactList *>(pair->extract(EXTRACT_NAME, dim)) : nullptr;
+  if (!contacts) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
   refuse_other_sub_styles(lmp, who);
-  ContactList &contacts = pair->contact_list();
-  contacts.wanted = true;
-  return &contacts;
+  contacts->wanted = true;
+  return contacts;
 }
 
 const ContactList &ContactList::current(const ContactList *list, LAMMPS *lmp, const char *who)

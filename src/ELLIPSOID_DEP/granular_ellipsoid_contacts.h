@@ -34,6 +34,8 @@ class ContactList {
   // "Compute contact/histo", when there is none, or when pair_style hybrid has another
   // sub-style than zero, whose contacts the list would miss), which records from now on.
   static ContactList *request(LAMMPS *lmp, const char *who);
+  // the name under which the pair's Pair::extract returns its list
+  static constexpr const char *EXTRACT_NAME = "contact_list";
   // For a compute's evaluation: the list, after an ERROR naming who unless it was requested
   // (init ran) and holds the contacts of the current step.
   static const ContactList &current(const ContactList *list, LAMMPS *lmp, const char *who);

@@ -42,9 +42,8 @@ static std::string history_fix_id(int size)
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
     fix_history(nullptr), size_history(PairHistory::size(0)), history_update(true),
-    freeze_group_bit(0), candidates_step(-1), candidates_build_count(-1), set_aside(0),
-    respa_run(false), restart_history_layout(0), restart_history_size(0), impact_velocity(0.0), contact_time(0.0),
-    damping_time(0.0)
+    freeze_group_bit(0), respa_run(false), restart_history_layout(0), restart_history_size(0),
+    impact_velocity(0.0), contact_time(0.0), damping_time(0.0)
 {
   // the history fix's IDs are the style's: a second instance (pair_style hybrid listing it
   // twice) would replace the first one's fix and fail at init and at deletion
@@ -389,6 +388,12 @@ double PairGranularEllipsoid::init_one(int i, int j)
 void *PairGranularEllipsoid::extract(const char *name, int &dim)
 {
   if (void *counter = extract_counters(name, dim)) return counter;
+  // the contacts of the last force evaluation, recorded once a compute requested them
+  // (ContactList::request)
+  if (std::strcmp(name, ContactList::EXTRACT_NAME) == 0) {
+    dim = 0;
+    return &contacts;
+  }
   if (std::strcmp(name, "contact_time") == 0) {
     dim = 0;
     return (void *) &contact_time;
@@ -407,6 +412,6 @@ double PairGranularEllipsoid::memory_usage()
   return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
                              state_keys.capacity() * sizeof(ShapeKey) +
                              ghost_owner.capacity() * sizeof(int) +
-                             (candidate_jj.capacity() + candidate_first.capacity()) * sizeof(int)) +
+                             candidates.memory_usage()) +
       contacts.memory_usage();
 }

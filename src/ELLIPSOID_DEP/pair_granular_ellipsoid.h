@@ -11,6 +11,7 @@
 
 #include "ellipsoid_force_law.h"
 #include "ellipsoid_kernel.h"
+#include "granular_candidates.h"
 #include "granular_contact_time.h"
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
@@ -40,8 +41,6 @@ class PairGranularEllipsoid : public Pair {
   void finish() override;
   double memory_usage() override;
 
-  // The contacts of the last force evaluation (recorded once a compute requested them).
-  ContactList &contact_list() { return contacts; }
   // Counters since the pair was created: this rank's, and summed over all ranks, in the
   // order of EllipsoidDep::PIPELINE_COUNTERS (also the order of compute pair's vector).
   void local_counters(double *out) const;
@@ -74,10 +73,9 @@ class PairGranularEllipsoid : public Pair {
   double *pair_history(int i, int jj) const;
 
   // per-atom state of owned + ghost atoms, rebuilt each force evaluation for the atoms of the
-  // candidate pairs (state_needed, set with the candidates; the others' states are stale)
+  // candidate pairs (Candidates::state_needed(); the others' states are stale)
   std::vector<EllipsoidState> states;
   std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
-  std::vector<char> state_needed;
   // per ghost atom (index - nlocal): the owned atom of the same ID (a periodic image on this
   // rank) or -1, found when the ghosts change (neighbour list builds)
   std::vector<int> ghost_owner;
@@ -85,21 +83,11 @@ class PairGranularEllipsoid : public Pair {
   void find_ghost_owners();
   void update_states();
 
-  // The neighbours each force evaluation visits: after a neighbour list build, those whose
-  // bounding spheres are within the skin (LAMMPS's size lists for spheres: radsum + skin);
-  // the others are apart until the next build, when no atom moves half the skin in between.
-  // candidate_jj[candidate_first[ii] ..] are i's (neighbour indices jj), found for the list
-  // built at step candidates_step (Neighbor::lastcall); set_aside counts the pairs left out.
-  std::vector<int> candidate_jj, candidate_first;
-  bigint candidates_step, candidates_build_count;    // and Neighbor::ncalls then
-  bigint set_aside;
+  // the neighbour pairs each force evaluation visits (granular_candidates.h)
+  Candidates candidates;
   // r-RESPA builds before its inner levels move the atoms, so the first evaluation after a
   // build does not see the build's positions (set by init_style for the run)
   bool respa_run;
-  bool builds_keep_skin() const;
-  void find_candidates();
-  bool candidates_stale() const;
-  void all_candidates();
 
   // the force law on the contact geometry of atoms i and j (in contact: see in_contact())
   EllipsoidDep::ContactForce pair_force(int i, int j, int law, double *history,

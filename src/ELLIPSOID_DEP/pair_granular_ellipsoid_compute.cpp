@@ -40,8 +40,10 @@ void PairGranularEllipsoid::update_states()
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   states.resize(nall);
   state_keys.resize(nall);
-  if (static_cast<int>(state_needed.size()) != nall) state_needed.assign(nall, 1);
-  const char *const needed = state_needed.data();
+  // the candidates' atoms (every atom when the candidates do not cover them all)
+  const std::vector<char> &state_needed = candidates.state_needed();
+  const std::vector<char> every(static_cast<int>(state_needed.size()) != nall ? nall : 0, 1);
+  const char *const needed = every.empty() ? state_needed.data() : every.data();
   for (int i = 0; i < nlocal; i++)
     if (needed[i]) atoms.update_state(i, states[i], state_keys[i]);
   // a ghost that is an image of an owned atom copies its state (checked value by value)
@@ -79,120 +81,6 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
   return &fix_history->firstvalue[i][size_history * jj];
 }
 
-namespace {
-constexpr int PREFETCH_AHEAD = 4;
-
-inline void prefetch_line(const void *p)
-{
-#if defined(__GNUC__)
-  __builtin_prefetch(p);
-#endif
-}
-
-// every cache line of n > 0 bytes from p
-inline void prefetch_bytes(const void *p, std::size_t n)
-{
-  const char *c = static_cast<const char *>(p);
-  for (std::size_t offset = 0; offset < n; offset += 64) prefetch_line(c + offset);
-  prefetch_line(c + n - 1);
-}
-
-inline void prefetch_candidate(const double *history, int stride, const EllipsoidState *state)
-{
-  prefetch_bytes(history, stride * sizeof(double));
-  prefetch_bytes(state, sizeof(EllipsoidState));
-}
-
-// A pair whose bounding spheres are apart (true): its history cleared (the law's law_slots
-// too), not kept at the next list build, counted as a bounding reject. law_slots is a local
-// of the caller's: a member would be reloaded after every store through touch.
-inline bool forget_if_apart(const BoundingTest &t, double *history, int &touch, int law_slots,
-                            PipelineCounters &counters)
-{
-  if (!reject_apart(t, history, counters)) return false;
-  touch = 0;
-  PairHistory(history).clear_law<ForceLaw::MAX_HISTORY_SIZE>(law_slots);
-  return true;
-}
-}    // namespace
-
-/* ----------------------------------------------------------------------
-   at the first force evaluation after a neighbour list build (its positions): the neighbours
-   within the skin of their bounding spheres are the candidates, the others are forgotten and
-   set aside (LAMMPS's size lists keep the pairs of spheres within radsum + skin);
-   builds_keep_skin() says they stay apart until the next build. The rejects this makes are
-   counted here; at the other steps compute() counts the pairs set aside. Only the atoms of
-   the candidates need their states until the next build. The bounding spheres come from the
-   positions and semi-axes: the states are built after this, for those atoms.
-------------------------------------------------------------------------- */
-
-void PairGranularEllipsoid::find_candidates()
-{
-  const int inum = list->inum, nall = atom->nlocal + atom->nghost;
-  // a margin over the rounding of the distances and of LAMMPS's displacement test
-  const double skin = neighbor->skin * (1.0 + 1e-10);
-  const EllipsoidAtoms atoms(atom);
-  double **x = atom->x;
-  const int law_slots = pipeline.law_slots;
-  candidate_jj.clear();
-  candidate_first.assign(inum + 1, 0);
-  state_needed.assign(nall, 0);
-  set_aside = 0;
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = list->ilist[ii];
-    const int *jlist = list->firstneigh[i];
-    int *touch = fix_history->firstflag[i];
-    const Vec3 ci(x[i][0], x[i][1], x[i][2]);
-    const double ri = atoms.bounding_radius(i);
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const BoundingTest t =
-          bounding_test(ci, ri, Vec3(x[j][0], x[j][1], x[j][2]), atoms.bounding_radius(j));
-      const bool beyond_skin = t.dist > t.reach + skin;
-      if (beyond_skin &&
-          forget_if_apart(t, pair_history(i, jj), touch[jj], law_slots, counters)) {
-        ++set_aside;
-        continue;
-      }
-      candidate_jj.push_back(jj);
-      state_needed[i] = state_needed[j] = 1;
-    }
-    candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
-  }
-  candidates_step = neighbor->lastcall;
-  candidates_build_count = neighbor->ncalls;
-}
-
-// every neighbour is a candidate: the builds do not keep the skin, or the list changed
-// since the first evaluation after its build (positions have moved since)
-void PairGranularEllipsoid::all_candidates()
-{
-  const int inum = list->inum;
-  candidate_jj.clear();
-  candidate_first.assign(inum + 1, 0);
-  for (int ii = 0; ii < inum; ii++) {
-    for (int jj = 0; jj < list->numneigh[list->ilist[ii]]; jj++) candidate_jj.push_back(jj);
-    candidate_first[ii + 1] = static_cast<int>(candidate_jj.size());
-  }
-  set_aside = 0;
-  state_needed.assign(atom->nlocal + atom->nghost, 1);
-  candidates_step = neighbor->lastcall;
-  candidates_build_count = neighbor->ncalls;
-}
-
-// the candidates are not those of the current list: it was built at this step (ago 0;
-// Neighbor::ncalls restarts after the build of every run's setup), at another step than
-// theirs, again at their step after their evaluation (a fix or command building between two
-// evaluations: the build count within a run), or holds other atoms; or they set pairs aside
-// under settings that no longer allow it
-bool PairGranularEllipsoid::candidates_stale() const
-{
-  return neighbor->ago == 0 || neighbor->lastcall != candidates_step ||
-      neighbor->ncalls != candidates_build_count ||
-      static_cast<int>(candidate_first.size()) != list->inum + 1 ||
-      (set_aside > 0 && !builds_keep_skin());
-}
-
 /* ---------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::compute(int eflag, int vflag)
@@ -204,11 +92,9 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   if (neighbor->ago == 0)
     EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid",
                                         atom->nlocal + atom->nghost);
-  const bool refresh = candidates_stale();
-  if (refresh && neighbor->ago == 0 && builds_keep_skin())
-    find_candidates();
-  else if (refresh)
-    all_candidates();
+  const int law_slots = pipeline.law_slots;
+  const bool refresh = candidates.refresh(lmp, list, fix_history, size_history, law_slots,
+                                          respa_run, counters);
   update_states();
   const bool record = contacts.recording();
   if (record) contacts.start(update->ntimestep);
@@ -226,10 +112,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   // loop invariants in locals: the calls in the loop would have them reloaded for every pair
   const EllipsoidState *const state = states.data();
   const int stride = size_history;
-  const int law_slots = pipeline.law_slots;
-
-  const int *const candidates = candidate_jj.data();
-  const bool gaps = set_aside > 0;
+  const bool gaps = candidates.set_aside() > 0;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -237,38 +120,20 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
     int *touch = firsttouch[i];
     double *const first_history = pair_history(i, 0);    // jj's at stride * jj, as pair_history
 
-    const int *const first_candidate = candidates + candidate_first[ii];
-    const int ncandidates = candidate_first[ii + 1] - candidate_first[ii];
+    const int *const first_candidate = candidates.first(ii);
+    const int ncandidates = candidates.count(ii);
     for (int k = 0; k < ncandidates; k++) {
       const int jj = first_candidate[k];
       const int j = jlist[jj] & NEIGHMASK;
       double *history = first_history + stride * jj;
-      // with pairs set aside the candidates' history rows and states are read with gaps,
-      // which the hardware prefetcher does not follow as it follows the sweep over every
-      // neighbour: then every cache line of them is asked for PREFETCH_AHEAD candidates
-      // ahead; without gaps the first lines of the next one
-      if (gaps) {
-        if (k == 0)
-          for (int a = 1; a < PREFETCH_AHEAD && a < ncandidates; a++)
-            prefetch_candidate(first_history + stride * first_candidate[a], stride,
-                               &state[jlist[first_candidate[a]] & NEIGHMASK]);
-        if (k + PREFETCH_AHEAD < ncandidates) {
-          const int ahead = first_candidate[k + PREFETCH_AHEAD];
-          prefetch_candidate(first_history + stride * ahead, stride,
-                             &state[jlist[ahead] & NEIGHMASK]);
-        }
-      } else if (k + 1 < ncandidates) {
-        const int next = first_candidate[k + 1];
-        prefetch_line(first_history + stride * next);
-        prefetch_line(&state[jlist[next] & NEIGHMASK]);
-      }
+      CandidatePrefetch::ahead(k, ncandidates, gaps, first_candidate, jlist, first_history,
+                               stride, state, NEIGHMASK);
       // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
-      if (forget_if_apart(bounding_test(state[i].shape, state[j].shape), history, touch[jj],
-                          law_slots, counters))
-        continue;
+      const BoundingTest bounds = bounding_test(state[i].shape, state[j].shape);
+      if (forget_if_apart(bounds, history, touch[jj], law_slots, counters)) continue;
 
       const ContactGeometry geometry =
-          evaluate_pair(state[i].shape, state[j].shape, pipeline, history, counters);
+          evaluate_near_pair(state[i].shape, state[j].shape, bounds, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
       PairHistory row(history);
       touch[jj] = row.in_use() ? 1 : 0;
@@ -312,22 +177,10 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   }
   // find_candidates() counted its rejects; the pairs it set aside are rejects at every step
   if (!refresh) {
-    counters.pairs += set_aside;
-    counters.bounding_rejects += set_aside;
+    counters.pairs += candidates.set_aside();
+    counters.bounding_rejects += candidates.set_aside();
   }
   local_counters(pvector);
-}
-
-/* ----------------------------------------------------------------------
-   the neighbour list builds keep every pair within the skin of its last build: a build
-   whenever an atom has moved half the skin (neigh_modify every 1 delay 0 check yes once no,
-   LAMMPS's default); otherwise every neighbour is visited at every step
-------------------------------------------------------------------------- */
-
-bool PairGranularEllipsoid::builds_keep_skin() const
-{
-  return neighbor->every == 1 && neighbor->delay == 0 && neighbor->dist_check == 1 &&
-      neighbor->build_once == 0 && !respa_run;
 }
 
 /* ----------------------------------------------------------------------

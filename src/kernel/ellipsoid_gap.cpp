@@ -76,10 +76,93 @@ namespace {
     return k < max_halvings;
   }
 
+  // d on the tangent plane at n (basis t1, t2): gradient (g1, g2), Hessian (h11, h12, h22),
+  // its smallest eigenvalue lmin and scale hscale. The Hessian is T^T (H_A + H_B) T - d I with
+  // H = M/h - (Mn)(Mn)^T/h^3 (exact for the degree-1 extension).
+  struct TangentModel {
+    Vec3 t1, t2;
+    double g1, g2, h11, h22, h12, lmin, hscale;
+  };
+
+  TangentModel tangent_model(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n,
+                             const GapEval &ev, const Vec3 &gt, double gn, double size)
+  {
+    TangentModel m;
+    tangent_basis(n, m.t1, m.t2);
+    // the two bodies' M/h summed first: two matrix-vector products instead of four
+    const double ia = 1.0 / ev.ha, ib = 1.0 / ev.hb;
+    const Mat3 s = a.inverse_form * ia + b.inverse_form * ib;
+    const Vec3 st1 = s * m.t1, st2 = s * m.t2;
+    const Vec3 &ua = ev.ua, &ub = ev.ub;
+    const double ua1 = ua.dot(m.t1), ua2 = ua.dot(m.t2), ub1 = ub.dot(m.t1), ub2 = ub.dot(m.t2);
+    m.h11 = m.t1.dot(st1) - (ua1 * ua1 * ia + ub1 * ub1 * ib) - gn;
+    m.h22 = m.t2.dot(st2) - (ua2 * ua2 * ia + ub2 * ub2 * ib) - gn;
+    m.h12 = m.t1.dot(st2) - (ua1 * ua2 * ia + ub1 * ub2 * ib);
+    m.g1 = gt.dot(m.t1);
+    m.g2 = gt.dot(m.t2);
+    const double tr = 0.5 * (m.h11 + m.h22);
+    const double disc = std::sqrt(0.25 * (m.h11 - m.h22) * (m.h11 - m.h22) + m.h12 * m.h12);
+    m.lmin = tr - disc;
+    m.hscale = std::max(std::fabs(tr) + disc, size);
+    return m;
+  }
+
+  // keeps the model convex: an eigenvalue below 1e-3 of the scale is shifted up to it
+  double convexity_shift(const TangentModel &m)
+  {
+    return m.lmin < 1e-3 * m.hscale ? 1e-3 * m.hscale - m.lmin : 0.0;
+  }
+
+  // the unit eigenvector of the smallest eigenvalue (h11, h22 shifted by `shift`), turned
+  // downhill: the way out of a saddle
+  void descent_eigenvector(const TangentModel &m, double shift, double &e1, double &e2)
+  {
+    const double h11u = m.h11 - shift, h22u = m.h22 - shift;
+    e1 = m.h12;
+    e2 = m.lmin - h11u;
+    if (e1 * e1 + e2 * e2 < (m.lmin - h22u) * (m.lmin - h22u) + m.h12 * m.h12) {
+      e1 = m.lmin - h22u;
+      e2 = m.h12;
+    }
+    const double en = std::sqrt(e1 * e1 + e2 * e2);
+    if (!(en > 0.0)) {
+      e1 = 1.0;
+      e2 = 0.0;
+    } else {
+      e1 /= en;
+      e2 /= en;
+    }
+    if (e1 * m.g1 + e2 * m.g2 > 0.0) {
+      e1 = -e1;
+      e2 = -e2;
+    }
+  }
+
+  // the Newton step (v1, v2) of the shifted model, within the trust radius; its length
+  double newton_step(const TangentModel &m, double &v1, double &v2)
+  {
+    const double det = m.h11 * m.h22 - m.h12 * m.h12;
+    v1 = -(m.h22 * m.g1 - m.h12 * m.g2) / det;
+    v2 = -(m.h11 * m.g2 - m.h12 * m.g1) / det;
+    double step = std::sqrt(v1 * v1 + v2 * v2);
+    if (!std::isfinite(step)) {    // should not happen; steepest descent fallback
+      v1 = -m.g1 / m.hscale;
+      v2 = -m.g2 / m.hscale;
+      step = std::sqrt(v1 * v1 + v2 * v2);
+    }
+    const double max_step = 0.5;    // trust radius in radians
+    if (step > max_step) {
+      v1 *= max_step / step;
+      v2 *= max_step / step;
+      step = max_step;
+    }
+    return step;
+  }
+
 }    // namespace
 
-// The 2x2 Hessian is T^T (H_A + H_B) T - d I with H = M/h - (Mn)(Mn)^T/h^3 (exact for the
-// degree-1 extension); indefinite Hessians are shifted and long steps are line-searched.
+// Riemannian Newton on the unit sphere: indefinite Hessians are shifted and long steps are
+// line-searched; a stationary start is checked for a saddle and left downhill.
 GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, Vec3 n, double tol,
                         int max_iter)
 {
@@ -104,65 +187,24 @@ GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, 
       r.converged = true;
       return r;
     }
-    Vec3 t1, t2;
-    tangent_basis(r.n, t1, t2);
-    // the two bodies' M/h summed first: two matrix-vector products instead of four
-    const double ia = 1.0 / ev.ha, ib = 1.0 / ev.hb;
-    const Mat3 s = a.inverse_form * ia + b.inverse_form * ib;
-    const Vec3 st1 = s * t1, st2 = s * t2;
-    const Vec3 &ua = ev.ua, &ub = ev.ub;
-    const double ua1 = ua.dot(t1), ua2 = ua.dot(t2), ub1 = ub.dot(t1), ub2 = ub.dot(t2);
-    double h11 = t1.dot(st1) - (ua1 * ua1 * ia + ub1 * ub1 * ib) - gn;
-    double h22 = t2.dot(st2) - (ua2 * ua2 * ia + ub2 * ub2 * ib) - gn;
-    const double h12 = t1.dot(st2) - (ua1 * ua2 * ia + ub1 * ub2 * ib);
-    const double g1 = gt.dot(t1), g2 = gt.dot(t2);
-    // smallest eigenvalue of the 2x2; shift to keep the model convex
-    const double tr = 0.5 * (h11 + h22);
-    const double disc = std::sqrt(0.25 * (h11 - h22) * (h11 - h22) + h12 * h12);
-    const double lmin = tr - disc;
-    const double hscale = std::max(std::fabs(tr) + disc, size);
-    if (stationary) {
-      if (!(lmin < -1e-6 * hscale)) {
-        r.converged = true;
-        return r;
-      }
+    TangentModel m = tangent_model(a, b, r.n, ev, gt, gn, size);
+    if (stationary && !(m.lmin < -1e-6 * m.hscale)) {
+      r.converged = true;
+      return r;
     }
     ++r.iterations;
-    if (lmin < 1e-3 * hscale) {
-      const double shift = 1e-3 * hscale - lmin;
-      h11 += shift;
-      h22 += shift;
-    }
-    const double det = h11 * h22 - h12 * h12;
-    double v1 = -(h22 * g1 - h12 * g2) / det;
-    double v2 = -(h11 * g2 - h12 * g1) / det;
-    double step = std::sqrt(v1 * v1 + v2 * v2);
+    const double shift = convexity_shift(m);
+    m.h11 += shift;
+    m.h22 += shift;
     if (stationary) {    // saddle: leave along the negative-curvature eigenvector
-      const double h11u = h11 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
-      const double h22u = h22 - (lmin < 1e-3 * hscale ? 1e-3 * hscale - lmin : 0.0);
-      double e1 = h12, e2 = lmin - h11u;
-      if (e1 * e1 + e2 * e2 < (lmin - h22u) * (lmin - h22u) + h12 * h12) {
-        e1 = lmin - h22u;
-        e2 = h12;
-      }
-      const double en = std::sqrt(e1 * e1 + e2 * e2);
-      if (!(en > 0.0)) {
-        e1 = 1.0;
-        e2 = 0.0;
-      } else {
-        e1 /= en;
-        e2 /= en;
-      }
-      if (e1 * g1 + e2 * g2 > 0.0) {
-        e1 = -e1;
-        e2 = -e2;
-      }
+      double e1, e2;
+      descent_eigenvector(m, shift, e1, e2);
       // any decrease of d will do
       const double d0 = ev.d;
       Vec3 trial_n;
       GapEval trial;
       if (!backtrack(
-              a, b, dc, r.n, t1, t2, 0.25 * e1, 0.25 * e2, 30,
+              a, b, dc, r.n, m.t1, m.t2, 0.25 * e1, 0.25 * e2, 30,
               [d0](double d) {
                 return d < d0;
               },
@@ -174,25 +216,16 @@ GapMinimum minimise_gap(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc, 
       r.ev = trial;
       continue;
     }
-    if (!std::isfinite(step)) {    // should not happen; steepest descent fallback
-      v1 = -g1 / hscale;
-      v2 = -g2 / hscale;
-      step = std::sqrt(v1 * v1 + v2 * v2);
-    }
-    const double max_step = 0.5;    // trust radius in radians
-    if (step > max_step) {
-      v1 *= max_step / step;
-      v2 *= max_step / step;
-      step = max_step;
-    }
+    double v1, v2;
+    const double step = newton_step(m, v1, v2);
     // Near the minimiser the pure Newton step is safe and the line search would only
     // see round-off; far away, Armijo backtracking guarantees descent.
     const bool line_search = step > 1e-4;
-    const double sufficient = ev.d + 1e-4 * (g1 * v1 + g2 * v2);    // slope < 0
+    const double sufficient = ev.d + 1e-4 * (m.g1 * v1 + m.g2 * v2);    // slope < 0
     Vec3 nn;
     GapEval en;
     if (!backtrack(
-            a, b, dc, r.n, t1, t2, v1, v2, 40,
+            a, b, dc, r.n, m.t1, m.t2, v1, v2, 40,
             [line_search, sufficient](double d) {
               return !line_search || d <= sufficient;
             },

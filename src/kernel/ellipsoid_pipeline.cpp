@@ -32,14 +32,21 @@ ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
                               PipelineCounters &counters)
 {
   const BoundingTest bounds = bounding_test(a, b);
+  // the overlap of a bounding reject is minus a lower bound of the distance
+  if (reject_apart(bounds, cache, counters))
+    return decided(Status::Separated, bounds.dc / bounds.dist, bounds.reach - bounds.dist);
+  return evaluate_near_pair(a, b, bounds, settings, cache, counters);
+}
+
+ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
+                                   const BoundingTest &bounds, const PipelineSettings &settings,
+                                   double *cache, PipelineCounters &counters)
+{
   const Vec3 &dc = bounds.dc;
-  const double dist = bounds.dist, reach = bounds.reach;
+  const double dist = bounds.dist;
   // Each shortcut returns its own result; the iteration's is built in the caller's place (the
   // one named result below, returned on every path after it) instead of copied there.
-  // Non-finite input falls through to the validity check; the overlap of a bounding reject is
-  // minus a lower bound of the distance.
-  if (reject_apart(bounds, cache, counters))
-    return decided(Status::Separated, dc / dist, reach - dist);
+  // Non-finite input falls through to the validity check.
   ++counters.pairs;
   PairHistory history(cache);
   PairHistory::State state = history.state();

@@ -135,6 +135,11 @@ inline bool reject_apart(const BoundingTest &t, double *cache, PipelineCounters 
 ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,
                               const PipelineSettings &settings, double *cache,
                               PipelineCounters &counters);
+// evaluate_pair after its opening, for a caller that made the bounding test (bounds, of a and
+// b) and found the pair not apart (reject_apart false), so that the test runs once per pair
+ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
+                                   const BoundingTest &bounds, const PipelineSettings &settings,
+                                   double *cache, PipelineCounters &counters);
 
 // A result of evaluate_pair that forces act on: Overlapping, or NotConverged (usable geometry).
 inline bool in_contact(const ContactGeometry &g)

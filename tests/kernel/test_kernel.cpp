@@ -835,6 +835,30 @@ TEST(Geometry, PlaneContact)
   }
 }
 
+// The wall dispatch: a Plane surface gives ellipsoid_plane_contact's geometry and its
+// clearance is the signed height of a point above the plane (both sides).
+TEST(Geometry, WallDispatch)
+{
+  std::mt19937_64 rng(7);
+  for (int k = 0; k < 20; ++k) {
+    const Ellipsoid r = make_ellipsoid(Vec3(0.1, -0.3, 1.2), random_rotation(rng), Vec3(0.5, 1.2, 2));
+    WallSurface w;
+    w.shape = WallShape::Plane;
+    w.normal = random_unit(rng);
+    w.offset = 0.2 * k - 1.5;
+    const ContactGeometry a = wall_contact(r, w), b = ellipsoid_plane_contact(r, w.normal, w.offset);
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.overlap, b.overlap);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.point, b.point);
+    EXPECT_EQ(a.effective_radius, b.effective_radius);
+    EXPECT_DOUBLE_EQ(wall_clearance(w, r.center), w.normal.dot(r.center) - w.offset);
+  }
+  WallSurface floor;    // the default: the plane z = 0, particles above
+  EXPECT_DOUBLE_EQ(wall_clearance(floor, Vec3(5, -2, 0.75)), 0.75);
+  EXPECT_DOUBLE_EQ(wall_clearance(floor, Vec3(5, -2, -0.25)), -0.25);
+}
+
 TEST(Geometry, SlabVolume)
 {
   std::mt19937_64 rng(13);

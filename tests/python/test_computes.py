@@ -431,3 +431,31 @@ def test_hybrid_with_zero_and_none_counts_every_contact():
         assert vector(lmp, "ch")[8] == 2    # one contact, two samples
     finally:
         lmp.close()
+
+
+def test_slab_keyword_reads_the_packing_computes_zlo_and_zhi():
+    """`slab pk` reads elements 5 and 6 of compute packing/ellipsoid's vector (its zlo and zhi)
+    through the compute's ID: the histograms equal those with zlo and zhi given as numbers."""
+    box, parts = oblate_stacks(ncol=2, height=6)
+    lmp = build_system(box, parts)
+    try:
+        lmp.commands_string("""
+            compute pk all packing/ellipsoid auto bottom 0.5 top 0.5
+            compute ch all contact/histo bins 6 slab pk
+            compute oh all orient/histo bins 6 slab pk
+            run 0
+            """)
+        pk = vector(lmp, "pk")
+        zlo, zhi = pk[4], pk[5]
+        assert 0.0 < zlo < zhi
+        by_id = array(lmp, "ch").copy(), array(lmp, "oh").copy()
+        lmp.commands_string(f"""
+            compute chz all contact/histo bins 6 zlo {zlo!r} zhi {zhi!r}
+            compute ohz all orient/histo bins 6 zlo {zlo!r} zhi {zhi!r}
+            run 0
+            """)
+        assert by_id[0][:, 2].sum() > 0.0
+        np.testing.assert_array_equal(by_id[0], array(lmp, "chz"))
+        np.testing.assert_array_equal(by_id[1], array(lmp, "ohz"))
+    finally:
+        lmp.close()

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The deposit protocol's speed against the accuracy of its results (phi and Z).
 
-    ./ellipsoid-dep python bench/protocol_trade.py [--N 400] [--seeds 101 202 303] [--jobs 2]
+    ./ellipsoid-dep python tools/protocol_trade.py [--N 400] [--seeds 101 202 303] [--jobs 2]
                                                    [--only NAME ...] [--by-config] [--table-only]
 
 Runs the default deposit (examples/deposit/in.deposit through tools/deposit_run.py, one rank,
@@ -14,10 +14,12 @@ costs no runs: a log has phi and Z (thermo) and KE per particle (PROGRESS) after
 so a looser ketol is read off a run at the first chunk end where a run with that ketol would
 stop. Cost: steps, and CPU seconds from LAMMPS's loop time x its "% CPU use".
 
-Writes bench/results/protocol_trade_N<N>.csv (one row per run and ketol), prints the table
-(mean +- standard error over seeds, the difference from the reference against the reference's
-seed-to-seed standard deviation) as markdown and plots phi and Z against the cost (steps) into
-doc/benchmarks_protocol_trade.png. Runs go to runs/protocol_trade/N<N>/<config>/s<seed>/.
+Writes results/protocol_trade/protocol_trade_N<N>.csv (one row per run and ketol), prints the
+table (mean +- standard error over seeds, the difference from the reference against the
+reference's seed-to-seed standard deviation) as markdown and plots phi and Z against the cost
+(steps) into results/protocol_trade/protocol_trade_N<N>.png. Runs go to
+runs/protocol_trade/N<N>/<config>/s<seed>/. The N = 400 results and their reading:
+doc/CHANGELOG.md, 2026-12-01, "Protocol".
 """
 import argparse
 import concurrent.futures
@@ -30,6 +32,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, "results", "protocol_trade")    # the CSV and the plot
 RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
 
 # The reference: stiff (overlaps at rest ~0.6x today's), slow (dt ~1/50 of the shortest
@@ -255,8 +258,8 @@ def table(args, runs, grid):
                         name, ketol)
                 per_run.append((label, ketol, s, run_dt(out, c), c["kn"], c["K"], c["zpour"],
                                 c["fins"], int(steps), cpu, phi, z))
-    os.makedirs(os.path.join(ROOT, "bench", "results"), exist_ok=True)
-    csv_path = os.path.join(ROOT, "bench", "results", "protocol_trade_N%d.csv" % args.N)
+    os.makedirs(OUT, exist_ok=True)
+    csv_path = os.path.join(OUT, "protocol_trade_N%d.csv" % args.N)
     with open(csv_path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["config", "ketol", "seed", "dt", "kn", "K", "zpour", "fins", "steps",
@@ -292,8 +295,8 @@ def table(args, runs, grid):
               "| %s |" % (label, rows[0][3], len(rows), steps, steps / steps_ref, cpu, phi,
                           phi_se, z, z_se, dphi, dz,
                           "-" if label == "reference" else ("yes" if ok else "**no**")))
-    plot(args, summary, phi_ref, z_ref, sd_phi, sd_z)
-    print("\nwrote %s and doc/benchmarks_protocol_trade.png" % os.path.relpath(csv_path, ROOT))
+    png_path = plot(args, summary, phi_ref, z_ref, sd_phi, sd_z)
+    print("\nwrote %s and %s" % (os.path.relpath(csv_path, ROOT), os.path.relpath(png_path, ROOT)))
 
 
 def plot(args, summary, phi_ref, z_ref, sd_phi, sd_z):
@@ -314,8 +317,10 @@ def plot(args, summary, phi_ref, z_ref, sd_phi, sd_z):
         ax.set_title("%s against cost, N = %d" % (what, args.N), fontsize=10)
         ax.legend(fontsize=8, loc="best")
     fig.tight_layout()
-    fig.savefig(os.path.join(ROOT, "doc", "benchmarks_protocol_trade.png"), dpi=110)
+    png_path = os.path.join(OUT, "protocol_trade_N%d.png" % args.N)
+    fig.savefig(png_path, dpi=110)
     plt.close(fig)
+    return png_path
 
 
 if __name__ == "__main__":

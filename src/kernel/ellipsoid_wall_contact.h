@@ -1,0 +1,42 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   ELLIPSOID_DEP kernel: contact of an ellipsoid with a wall of any supported shape, the seam
+   for new wall shapes. A wall is a WallSurface: its shape and the parameters of that shape;
+   wall_clearance() and wall_contact() dispatch on the shape, one row per shape.
+
+   Add a wall shape: its contact in a kernel file of its own (as ellipsoid_plane_contact.*),
+   a WallShape entry with its parameters in WallSurface, and its row in wall_clearance() and
+   wall_contact() (ellipsoid_wall_contact.cpp); the fix gives it a keyword.
+
+   Conventions (every shape)
+   - The ellipsoid is body A, the wall body B. The result's normal points from the particle
+     into the wall, overlap > 0 in contact, R* from the curvatures at the contact point.
+   - wall_clearance(w, x): the signed distance of point x from the surface, positive on the
+     particle side. A particle whose bounding radius is below its centre's clearance cannot
+     touch the wall.
+
+   Degenerate cases: those of the shape's contact (ellipsoid_plane_contact.h).
+------------------------------------------------------------------------- */
+
+#ifndef ELLIPSOID_DEP_ELLIPSOID_WALL_CONTACT_H
+#define ELLIPSOID_DEP_ELLIPSOID_WALL_CONTACT_H
+
+#include "ellipsoid_contact.h"
+
+namespace EllipsoidDep {
+
+enum class WallShape {
+  Plane    // the solid half-space {x : normal.x <= offset}
+};
+
+struct WallSurface {
+  WallShape shape = WallShape::Plane;
+  Vec3 normal = Vec3::UnitZ();    // Plane: unit, into the particle region
+  double offset = 0.0;            // Plane: where the solid ends along normal
+};
+
+double wall_clearance(const WallSurface &w, const Vec3 &x);
+ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
+
+}    // namespace EllipsoidDep
+
+#endif
