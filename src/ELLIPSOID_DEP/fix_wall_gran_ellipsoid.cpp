@@ -67,19 +67,20 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
       wall_material_given = true;
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
-      if (particle_law.normal.kind != NormalModel::Kind::HertzMaterial)
+      if (!std::holds_alternative<HertzMaterialNormal>(particle_law.normal))
         error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: wall_material needs hertz/material");
       ForceLaw wall_side = particle_law;
+      auto &wall_normal = std::get<HertzMaterialNormal>(wall_side.normal);
       const std::string value = arg[iarg + 1];
       if (value == "rigid") {
         // an undeformable wall: no compliance, 1/E* = (1 - nu^2)/E of the particle
-        wall_side.normal.youngs = HUGE_VAL;
+        wall_normal.youngs = HUGE_VAL;
         iarg += 2;
       } else if (utils::is_double(value)) {
         if (iarg + 3 > narg)
           utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid wall_material E nu", error);
-        wall_side.normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-        wall_side.normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        wall_normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+        wall_normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
         message = wall_side.validate();
         if (!message.empty())
           error->all(FLERR, iarg, "Fix wall/gran/ellipsoid wall_material: {}", message);
@@ -89,8 +90,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
         message = lookup(value, material);
         if (!message.empty())
           error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid wall_material: {}", message);
-        wall_side.normal.youngs = material.youngs;
-        wall_side.normal.poisson = material.poisson;
+        wall_normal.youngs = material.youngs;
+        wall_normal.poisson = material.poisson;
         iarg += 2;
       }
       // the pair's mixing rule: the restitution stays the particle law's
@@ -282,7 +283,7 @@ void FixWallGranEllipsoid::setup(int vflag)
                    "than half their smallest semi-axis at setup",
                    all[1]);
 
-  // setup forces must not advance the tangential history
+  // setup forces must not advance the law's history
   history_update = false;
   post_force(vflag);
   history_update = true;
@@ -341,9 +342,9 @@ void FixWallGranEllipsoid::wall_forces()
       }
       // setup forces look at the stored history without advancing it (on a copy, dt 0), as
       // the pair's do: a step's displacement there would push the particle once, unrecorded
-      const TangentialHistory tangential(history, history_update);
+      const LawHistory law_history(history, law.history_size(), history_update);
       const ContactForce result = law.compute(g, wall_motion(state, g.point, wall_velocity),
-                                              history_update ? dt : 0.0, tangential.get());
+                                              history_update ? dt : 0.0, law_history.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];

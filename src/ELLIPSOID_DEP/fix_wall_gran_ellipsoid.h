@@ -69,7 +69,7 @@ class FixWallGranEllipsoid : public Fix {
   void move_walls();
   double servo_target() const;    // in force units
   EllipsoidDep::ForceLaw law;
-  int size_history;        // the law's history size per wall (tangential displacement)
+  int size_history;        // the law's history size times the number of walls
   double **history_one;    // per atom, per wall
   bool history_update;
   double impact_velocity;          // keyword; 0: the fastest atom of the group
@@ -81,7 +81,7 @@ class FixWallGranEllipsoid : public Fix {
   int force_flag;
 
   void wall_forces();
-  // the tangential displacement of atom i against wall k (null without history)
+  // the law's history of atom i against wall k (null without history)
   double *wall_history(int i, int k) const
   {
     return size_history ? &history_one[i][law.history_size() * k] : nullptr;
