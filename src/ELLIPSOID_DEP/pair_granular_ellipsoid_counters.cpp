@@ -83,3 +83,29 @@ void PairGranularEllipsoid::finish()
                    "(non-finite positions or shapes) and gave no force",
                    degenerate);
 }
+
+/* ----------------------------------------------------------------------
+   the counters (extract_counters), "contact_time": the shortest Hertz contact time of the
+   last run start, or "damping_time": its shortest damping time (dim 0; 0: no moving atoms
+   to judge by, or for the damping time an undamped law)
+------------------------------------------------------------------------- */
+
+void *PairGranularEllipsoid::extract(const char *name, int &dim)
+{
+  if (void *counter = extract_counters(name, dim)) return counter;
+  // the contacts of the last force evaluation, recorded once a compute requested them
+  // (ContactList::request)
+  if (std::strcmp(name, ContactList::EXTRACT_NAME) == 0) {
+    dim = 0;
+    return &contacts;
+  }
+  if (std::strcmp(name, "contact_time") == 0) {
+    dim = 0;
+    return (void *) &contact_time;
+  }
+  if (std::strcmp(name, "damping_time") == 0) {
+    dim = 0;
+    return (void *) &damping_time;
+  }
+  return nullptr;
+}
