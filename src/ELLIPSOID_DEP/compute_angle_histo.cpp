@@ -59,6 +59,8 @@ void ComputeAngleHisto::parse_args(int narg, char **arg)
     if (strcmp(arg[iarg], "bins") == 0) {
       nbins = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (nbins < 1) error->all(FLERR, "Compute {} bins must be >= 1", name);
+      // the sums (3 per bin) are reduced with one MPI call, whose count is an int
+      if (nbins > (MAXSMALLINT - 64) / 3) error->all(FLERR, "Compute {} bins is too large", name);
     } else if (!slab.parse(arg[iarg], arg[iarg + 1]) && !parse_keyword(arg[iarg], arg[iarg + 1]))
       error->all(FLERR, "Unknown compute {} keyword: {}", name, arg[iarg]);
     iarg += 2;
@@ -67,8 +69,9 @@ void ComputeAngleHisto::parse_args(int narg, char **arg)
 
   size_array_rows = nbins;
   memory->create(array, nbins, size_array_cols, fmt::format("{}:array", name).c_str());
-  hist = new double[3 * nbins + NMOMENT + nextra];
-  hist_all = new double[3 * nbins + NMOMENT + nextra];
+  const int nsums = 3 * nbins + NMOMENT + nextra;
+  hist = new double[nsums];
+  hist_all = new double[nsums];
   const double dtheta = theta_max / nbins;
   for (int k = 0; k < nbins; k++) {
     array[k][0] = (k + 0.5) * dtheta;

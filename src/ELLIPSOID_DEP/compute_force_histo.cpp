@@ -48,6 +48,8 @@ ComputeForceHisto::ComputeForceHisto(LAMMPS *lmp, int narg, char **arg) :
     if (strcmp(key, "bins") == 0) {
       nbins = utils::inumeric(FLERR, value, false, lmp);
       if (nbins < 1) error->all(FLERR, "Compute force/histo bins must be >= 1");
+      // the bins and the count beyond max are reduced with one MPI call, whose count is an int
+      if (nbins > MAXSMALLINT - 1) error->all(FLERR, "Compute force/histo bins is too large");
     } else if (strcmp(key, "max") == 0) {
       xmax = utils::numeric(FLERR, value, false, lmp);
       if (!(xmax > 0.0)) error->all(FLERR, "Compute force/histo max must be > 0");
@@ -76,8 +78,8 @@ ComputeForceHisto::ComputeForceHisto(LAMMPS *lmp, int narg, char **arg) :
     array[k][0] = (k + 0.5) * xmax / nbins;
     array[k][1] = array[k][2] = 0.0;
   }
-  counts.assign(nbins + 1, 0.0);
-  counts_all.assign(nbins + 1, 0.0);
+  counts.assign(static_cast<size_t>(nbins) + 1, 0.0);
+  counts_all.assign(static_cast<size_t>(nbins) + 1, 0.0);
 }
 
 ComputeForceHisto::~ComputeForceHisto()
@@ -141,7 +143,7 @@ void ComputeForceHisto::tally()
 
   // counts[nbins]: the samples at or beyond max
   double largest = 0.0;
-  counts.assign(nbins + 1, 0.0);
+  counts.assign(counts.size(), 0.0);
   const double width = xmax / nbins;
   for (const double f : forces) {
     const double x = mean > 0.0 ? f / mean : 0.0;
@@ -150,7 +152,8 @@ void ComputeForceHisto::tally()
     if (x < xmax) k = std::min(static_cast<int>(x / width), nbins - 1);    // x / width may round up
     counts[k] += 1.0;
   }
-  MPI_Allreduce(counts.data(), counts_all.data(), nbins + 1, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(counts.data(), counts_all.data(), static_cast<int>(counts.size()), MPI_DOUBLE,
+                MPI_SUM, world);
   double largest_all = 0.0;
   MPI_Allreduce(&largest, &largest_all, 1, MPI_DOUBLE, MPI_MAX, world);
 

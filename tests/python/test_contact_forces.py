@@ -205,6 +205,8 @@ def test_bad_keywords_and_requirements():
                 ("compute c all contact/histo weight mass", "weight must be 'none' or 'force'"),
                 ("compute c all force/histo max 0", "max must be > 0"),
                 ("compute c all force/histo bins 0", "bins must be >= 1"),
+                ("compute c all force/histo bins 2147483647", "bins is too large"),
+                ("compute c all contact/histo bins 1000000000", "bins is too large"),
                 ("compute c all force/histo select middle", "select must be 'point' or 'center'"),
                 ("compute c all force/histo weight force", "Unknown compute force/histo keyword"),
                 ("compute c all force/histo zlo 1 slab pk", "use either 'slab' or 'zlo'/'zhi'"),
