@@ -253,8 +253,8 @@ def deposit(tmp_path_factory):
     lmp.commands_string("""
         compute pl all pair/local p1 p2 p3 p4 p5 p6 p7 p8 p9 p10 dx dy dz
         compute pp all property/local patom1 patom2 cutoff type
-        compute fa all force/histo bins 20 max 5
-        compute ca all contact/histo bins 18 weight force
+        compute fa all force/histo
+        compute ca all contact/histo weight force
         run 0 post no
         """)
     pl = np.array(lmp.numpy.extract_compute("pl", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY), dtype=float)
@@ -276,7 +276,8 @@ def contact_samples(pl, zlo=-math.inf, zhi=math.inf):
 
 
 def test_outputs_use_the_forces_of_pair_local(deposit):
-    """(c): every output's per-contact forces are pair/local's, with and without the slab"""
+    """(c): every output's per-contact forces are pair/local's, with and without the slab;
+    fa and ca have the default bins (20 of f/<f> up to 5; 18 of theta)"""
     lmp, pk, pl = deposit["lmp"], deposit["pk"], deposit["pl"]
     u, f = contact_samples(pl)
     assert vector(lmp, "ca")[8] == len(f) == 2 * len(pl)    # the same contacts
