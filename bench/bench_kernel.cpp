@@ -77,11 +77,11 @@ void BM_BoundingReject(benchmark::State &state)
   auto pairs = disjoint();
   for (auto &p : pairs)    // far apart
     p.b = make_ellipsoid(p.a.center + 10.0 * p.n, p.b.rotation, p.b.semi_axes);
-  std::vector<double> cache(PairCache::PIPELINE_SIZE * kPairs, 0.0);
+  std::vector<double> cache(PairHistory::PIPELINE_SIZE * kPairs, 0.0);
   PipelineSettings ps;
   PipelineCounters cnt;
   cycle(state, [&](int k) {
-    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PairCache::PIPELINE_SIZE * k], cnt);
+    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PairHistory::PIPELINE_SIZE * k], cnt);
     benchmark::DoNotOptimize(g);
   });
 }
@@ -103,13 +103,13 @@ BENCHMARK(BM_PlaneSeparates);
 // (a plane for disjoint pairs, a normal for contacts), then the same pairs are timed.
 PipelineCounters time_pipeline(benchmark::State &state, const std::vector<Pair> &pairs)
 {
-  std::vector<double> cache(PairCache::PIPELINE_SIZE * kPairs, 0.0);
+  std::vector<double> cache(PairHistory::PIPELINE_SIZE * kPairs, 0.0);
   PipelineSettings ps;
   PipelineCounters cnt;
   for (int i = 0; i < kPairs; ++i)
-    evaluate_pair(pairs[i].a, pairs[i].b, ps, &cache[PairCache::PIPELINE_SIZE * i], cnt);
+    evaluate_pair(pairs[i].a, pairs[i].b, ps, &cache[PairHistory::PIPELINE_SIZE * i], cnt);
   cycle(state, [&](int k) {
-    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PairCache::PIPELINE_SIZE * k], cnt);
+    auto g = evaluate_pair(pairs[k].a, pairs[k].b, ps, &cache[PairHistory::PIPELINE_SIZE * k], cnt);
     benchmark::DoNotOptimize(g);
   });
   cnt.pairs -= kPairs;    // count the timed evaluations only

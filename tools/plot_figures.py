@@ -1,28 +1,34 @@
 #!/usr/bin/env python3
-"""Draw the paper's figures from a study's results table (tools/study_table.py).
+"""Draw the paper's figures from a study's results folder (tools/study_table.py, study_claims.py).
 
     ./ellipsoid-dep python tools/plot_figures.py results/study/table.csv [--out DIR]
                                                  [--law NAME] [--N N]
 
-The table holds one row per point (eta, zeta, delta_r, N, tangential law) with the mean and
-standard error over seeds of every quantity and the files of its seed-mean histograms.
-The figures use one law and one N (default: those with the most points), except
-fig_density_laws.png, which compares the laws at that N. Writes into DIR (default: the
-table's folder) PNG files:
-  fig_density_map.png     phi over (eta, zeta), lowest delta_r                         (Fig. 4a)
-  fig_density_lines.png   phi along eta = zeta, prolate (zeta = 1, vs eta) and oblate
-                          (eta = 1, vs zeta); right panel: eta = zeta for each delta_r (Fig. 4b)
-  fig_z_map.png           Z over (eta, zeta) (and the rattler-free Z)                   (Fig. 5)
-  fig_contact_shapes.png  P(Omega(theta)) of contact normals for several shapes     (Fig. 6a)
-  fig_contact_dr.png      the same for one shape and several delta_r                 (Fig. 6b)
-  fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes       (Fig. 7)
-  fig_density_laws.png    phi along eta = zeta at the lowest delta_r, one curve per
-                          tangential law (only when the table holds more than one)
-Error bars are standard errors over seeds (none for a single seed). A figure whose data are
-missing (e.g. a single delta_r) is skipped with a note.
+Reads table.csv, the deposits of deposits.csv (their histograms and packing.dat), claims.json
+(fitted maxima, crossing angles; optional) and a sizes file (sizes_*.csv, tools/plot_sizes.py;
+optional) in the table's folder. The figures use one law and one N (default: those with the
+most points), except fig_density_laws.png, which compares the laws at that N. Every error bar
+and error map is a standard error from the seed SD pooled per group of shapes
+(tools/study_stats.py: spheroids, general shapes below and above a/c = 4, per delta_r and law)
+/ sqrt(the point's seeds); per bin for the histograms. Writes into DIR (default: the table's
+folder) PNG files:
+  fig_sizes.png           V(r) and n(r) for several alpha, beta, a deposit's sizes     (Fig. 2)
+  fig_density_map.png     phi over (eta, zeta), lowest delta_r, and its error map      (Fig. 4a)
+  fig_density_lines.png   phi along eta = zeta, prolate and oblate; the same near the
+                          maxima with the fits; eta = zeta for each delta_r             (Fig. 4b)
+  fig_z_map.png           Z over (eta, zeta) and its error map                          (Fig. 5)
+  fig_z_norattler_map.png the same without rattlers
+  fig_contact_shapes.png  P(Omega(theta)) of contact normals for several shapes      (Fig. 6a)
+  fig_contact_dr.png      the same for (1.6, 1.8) (else the shape with the most delta_r)
+                          at each delta_r                                             (Fig. 6b)
+  fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes        (Fig. 7)
+  fig_density_laws.png    phi along eta = zeta at the lowest delta_r, one curve per law
+A figure whose data are missing is skipped with a note.
 """
 import argparse
 import csv
+import glob
+import json
 import math
 import os
 import sys
@@ -34,19 +40,28 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-PI_TICKS = ([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
-            ["0", r"$\pi/4$", r"$\pi/2$", r"$3\pi/4$", r"$\pi$"])
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_maps import groups_text, map_figure  # noqa: E402
+from plot_sizes import figure as sizes_figure  # noqa: E402
+from study_claims import Selection, load_deposits  # noqa: E402
+from study_histograms import FIGURE_SHAPES, ISOTROPIC, binned  # noqa: E402
+
+PI_TICKS = ([0, math.pi / 5, math.pi / 4, math.pi / 3, math.pi / 2, 3 * math.pi / 4, math.pi],
+            ["0", r"$\frac{\pi}{5}$", r"$\frac{\pi}{4}$", r"$\frac{\pi}{3}$", r"$\frac{\pi}{2}$",
+             r"$\frac{3\pi}{4}$", r"$\pi$"])
+LINES = (("eta = zeta (vs eta)", lambda e, z: e == z, 0, "o-"),
+         ("prolate, zeta = 1 (vs eta)", lambda e, z: z == 1.0, 0, "s--"),
+         ("oblate, eta = 1 (vs zeta)", lambda e, z: e == 1.0, 1, "^-."))
+FIG6B = (1.6, 1.8)    # the paper's shape of Fig. 6b
 
 
 def load(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     for r in rows:
-        for k, v in r.items():
-            if k.endswith("_mean") or k.endswith("_sem") or k in ("eta", "zeta", "delta_r"):
-                r[k] = float(v)
+        for k in ("eta", "zeta", "delta_r"):
+            r[k] = float(r[k])
         r["N"] = int(r["N"])
-        r["seeds"] = int(r["seeds"])
     return rows
 
 
@@ -55,135 +70,153 @@ def most_common(rows, key):
     return max(counts, key=lambda v: (counts[v], str(v)))
 
 
-def err(r, q):
-    """standard error of quantity q of a point, 0 when unknown (one seed)"""
-    e = r[q + "_sem"]
-    return 0.0 if math.isnan(e) else e
-
-
 def save(fig, out, fname):
     fig.tight_layout()
     p = os.path.join(out, fname)
-    fig.savefig(p, dpi=130)
+    fig.savefig(p, dpi=100)
     plt.close(fig)
     return p
 
 
-def diagonal_curve(ax, rows, label):
-    """phi with its error bars along eta = zeta of rows (one delta_r, one law)"""
-    line = sorted((r for r in rows if r["eta"] == r["zeta"]), key=lambda r: r["eta"])
-    if line:
-        ax.errorbar([r["eta"] for r in line], [r["phi_mean"] for r in line],
-                    yerr=[err(r, "phi") for r in line], fmt="o-", capsize=2, label=label)
+def draw_line(ax, pooled, on_line, axis, style, label, color=None):
+    """a line's means with their pooled standard errors; returns the points [(x, shape)]"""
+    points = sorted((s[axis], s) for s in pooled.values if on_line(*s) or s == (1.0, 1.0))
+    if len(points) < 2:
+        return []
+    err = [pooled.se(s) or 0.0 for _, s in points]
+    ax.errorbar([x for x, _ in points], [pooled.mean(s) for _, s in points], yerr=err,
+                fmt=style, ms=4, capsize=3, elinewidth=1.2, label=label, color=color)
+    return points
 
 
-def shape_map(rows, dr, value, out, fname, label, title):
-    sel = [r for r in rows if r["delta_r"] == dr]
-    etas = sorted({r["eta"] for r in sel})
-    zetas = sorted({r["zeta"] for r in sel})
-    if len(etas) < 2 or len(zetas) < 2:
-        print("  %s: skipped (needs >= 2 values of eta and of zeta at delta_r %g)" % (fname, dr))
-        return None
-    grid = np.full((len(zetas), len(etas)), np.nan)
-    for r in sel:
-        grid[zetas.index(r["zeta"]), etas.index(r["eta"])] = r[value + "_mean"]
-    fig, ax = plt.subplots(figsize=(5.2, 4.3))
-
-    def edges(v):
-        v = np.asarray(v, float)
-        mid = (v[1:] + v[:-1]) / 2
-        return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
-
-    m = ax.pcolormesh(edges(etas), edges(zetas), np.ma.masked_invalid(grid), shading="flat",
-                      cmap="viridis")
-    for i, z in enumerate(zetas):
-        for j, e in enumerate(etas):
-            if not np.isnan(grid[i, j]):
-                ax.text(e, z, ("%.3f" if value == "phi" else "%.2f") % grid[i, j], ha="center",
-                        va="center", fontsize=7, color="w")
-    lo = max(min(etas), min(zetas))
-    hi = min(max(etas), max(zetas))
-    ax.plot([lo, hi], [lo, hi], "w--", lw=0.8)
-    fig.colorbar(m, ax=ax, label=label)
-    ax.set_xlabel(r"$\eta = a/b$")
-    ax.set_ylabel(r"$\zeta = b/c$")
-    ax.set_title(title, fontsize=9)
-    return save(fig, out, fname)
+def draw_fit(ax, pooled, points, m, color):
+    """the nominal parabola of a claims.json maximum over its window, and the maximum with
+    its errors (bootstrap and fit window in quadrature)"""
+    lo, hi = m["window"]
+    win = [(x, s) for x, s in points if lo <= x <= hi]
+    c = np.polyfit([x for x, _ in win], [pooled.mean(s) for _, s in win], 2)
+    xs = np.linspace(lo, hi, 60)
+    ax.plot(xs, np.polyval(c, xs), "-", lw=0.8, color=color, alpha=0.7)
+    ax.errorbar([m["x_max"]], [m["phi_max"]],
+                xerr=[math.hypot(m.get("x_max_sd") or 0, m["x_max_sys"])],
+                yerr=[math.hypot(m.get("phi_max_sd") or 0, m["phi_max_sys"])], fmt="D", ms=5,
+                color=color, mfc="w", capsize=3)
 
 
-def density_lines(rows, out, dr0):
-    fig, axs = plt.subplots(1, 2, figsize=(9.5, 3.8))
-    sel = [r for r in rows if r["delta_r"] == dr0]
-    lines = [("eta = zeta (vs eta)", lambda r: r["eta"] == r["zeta"], "eta", "o-"),
-             ("prolate, zeta = 1 (vs eta)", lambda r: r["zeta"] == 1.0, "eta", "s--"),
-             ("oblate, eta = 1 (vs zeta)", lambda r: r["eta"] == 1.0, "zeta", "^-.")]
-    drawn = 0
-    for lab, cond, xkey, style in lines:
-        line = sorted((r for r in sel if cond(r)), key=lambda r: r[xkey])
-        if len(line) < 2:
-            continue
-        axs[0].errorbar([r[xkey] for r in line], [r["phi_mean"] for r in line],
-                        yerr=[err(r, "phi") for r in line], fmt=style, capsize=2, label=lab)
-        drawn += 1
-    axs[0].set_xlabel(r"$\eta$ or $\zeta$ (the parameter that varies)")
-    axs[0].set_ylabel(r"volume fraction $\phi$")
-    axs[0].set_title(r"$\delta_r$ = %g" % dr0, fontsize=9)
-    if drawn:
-        axs[0].legend(fontsize=8)
-    for dr in sorted({r["delta_r"] for r in rows}):
-        diagonal_curve(axs[1], [r for r in rows if r["delta_r"] == dr], r"$\delta_r$ = %g" % dr)
-    axs[1].set_xlabel(r"$\eta = \zeta$")
-    axs[1].set_ylabel(r"$\phi$")
-    axs[1].set_title("eta = zeta for each size polydispersity", fontsize=9)
-    axs[1].legend(fontsize=8)
+def density_lines(sels, law, dr0, claims, out):
+    fig, axs = plt.subplots(1, 3, figsize=(15, 4.6))
+    pooled = sels[(dr0, law)].pooled
+    colors = ("C0", "C1", "C2")
+    for (label, on_line, axis, style), color, name in zip(LINES, colors, ("diagonal", "prolate",
+                                                                         "oblate")):
+        draw_line(axs[0], pooled, on_line, axis, style, label, color)
+        points = draw_line(axs[1], pooled, on_line, axis, style, label, color)
+        m = (claims or {}).get("maxima", {}).get(name)
+        if points and m and "x_max" in m:
+            draw_fit(axs[1], pooled, points, m, color)
+    axs[1].set_xlim(0.95, 2.25)
+    axs[1].set_ylim(0.615, 0.645)
+    axs[1].set_title("near the maxima: 5-point parabolas, maxima (diamonds) with bootstrap\n"
+                     "and fit-window errors", fontsize=8)
+    axs[0].set_title(r"$\delta_r$ = %g, %s; error bars: pooled seed SD / sqrt(seeds)"
+                     % (dr0, law), fontsize=8)
+    axs[0].text(0.03, 0.03, groups_text(pooled, "%.3f", "\n"), transform=axs[0].transAxes,
+                fontsize=6.5, va="bottom")
+    for dr in sorted(d for d, name in sels if name == law):
+        draw_line(axs[2], sels[(dr, law)].pooled, LINES[0][1], 0, "o-", r"$\delta_r$ = %g" % dr)
+    axs[2].set_title("eta = zeta for each size polydispersity (%s)" % law, fontsize=8)
+    for ax in axs:
+        ax.set_xlabel(r"$\eta$ or $\zeta$ (the parameter that varies)" if ax is not axs[2]
+                      else r"$\eta = \zeta$")
+        ax.set_ylabel(r"volume fraction $\phi$")
+        ax.legend(fontsize=7)
     return save(fig, out, "fig_density_lines.png")
 
 
-def density_laws(rows, out):
-    """phi along eta = zeta at the lowest delta_r of rows (one N), one curve per law"""
+def density_laws(sels, dr0, out):
     fname = "fig_density_laws.png"
-    laws = sorted({r["law"] for r in rows})
+    laws = sorted({name for d, name in sels if d == dr0})
     if len(laws) < 2:
         print("  %s: skipped (one tangential law)" % fname)
         return None
-    dr = min(r["delta_r"] for r in rows)
-    fig, ax = plt.subplots(figsize=(5.2, 3.8))
+    fig, ax = plt.subplots(figsize=(5.6, 4.0))
     for law in laws:
-        diagonal_curve(ax, [r for r in rows if r["law"] == law and r["delta_r"] == dr], law)
+        draw_line(ax, sels[(dr0, law)].pooled, LINES[0][1], 0, "o-", law)
     ax.set_xlabel(r"$\eta = \zeta$")
     ax.set_ylabel(r"volume fraction $\phi$")
-    ax.set_title(r"eta = zeta for each tangential law, $\delta_r$ = %g, N %d"
-                 % (dr, rows[0]["N"]), fontsize=9)
+    ax.set_title(r"eta = zeta for each tangential law, $\delta_r$ = %g (pooled errors)" % dr0,
+                 fontsize=8)
     ax.legend(fontsize=8)
     return save(fig, out, fname)
 
 
-def read_mean_histo(path):
-    """theta, P mean, P standard error (study_table.py's seed-mean histogram)"""
-    a = np.loadtxt(path, ndmin=2)
-    return a[:, 0], a[:, 1], np.nan_to_num(a[:, 2])
-
-
-def histo_figure(table_dir, points, col, out, fname, title, xlabel, labeller, max_lines=6):
-    if not points:
-        print("  %s: skipped (no data)" % fname)
-        return None
-    if len(points) > max_lines:    # keep a readable spread
-        idx = np.unique(np.linspace(0, len(points) - 1, max_lines).round().astype(int))
-        points = [points[i] for i in idx]
-    fig, ax = plt.subplots(figsize=(5.4, 3.9))
-    for r in points:
-        th, p, e = read_mean_histo(os.path.join(table_dir, r[col]))
-        ax.errorbar(th, p, yerr=e, fmt="o-", ms=3, capsize=2,
-                    label=labeller(r) + (" (%d seeds)" % r["seeds"] if r["seeds"] > 1 else ""))
-    ax.axhline(1 / (4 * math.pi), color="gray", ls=":", lw=1, label=r"isotropic $1/4\pi$")
+def histo_figure(curves, path, title, xlabel, marks=()):
+    """curves: [(theta, P, its standard error, label)]; marks: [(angle, label, style)]"""
+    fig, ax = plt.subplots(figsize=(6.6, 5.8))
+    for theta, p, err, label in curves:
+        ax.errorbar(theta, p, yerr=np.nan_to_num(err), fmt="o-", ms=3, capsize=2,
+                    elinewidth=1, label=label)
+    ax.axhline(ISOTROPIC, color="gray", ls=":", lw=1, label=r"isotropic $1/4\pi$")
+    for angle, label, style in marks:
+        ax.axvline(angle, color="k", ls=style, lw=0.8, label=label)
     ax.set_xticks(*PI_TICKS)
     ax.set_xlim(0, math.pi)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(r"$P(\Omega(\theta))$")
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7)
-    return save(fig, out, fname)
+    ax.set_title(title, fontsize=8)
+    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.14))
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def crossing_marks(claims, histogram):
+    """vertical lines: the paper's angle, and the medians of the two readings"""
+    c = (claims or {}).get("verdicts", {}).get("crossings", {}).get(histogram)
+    if not c:
+        return []
+    marks = [(c["paper"], "the paper's angle", "-")]
+    if "median" in c["each_other"]:
+        marks.append((c["each_other"]["median"], "curves cross each other (median of %d pairs)"
+                      % c["each_other"]["pairs"], "--"))
+    if c["isotropic_level"].get("shapes"):
+        marks.append((c["isotropic_level"]["median"], "curves cross 1/4pi (median of %d shapes)"
+                      % len(c["isotropic_level"]["shapes"]), "-."))
+    return marks
+
+
+def shape_figures(sels, law, dr0, claims, out, tag):
+    written = []
+    sel = sels[(dr0, law)]
+    for histogram, fname, what, title in (
+            ("contact_normals", "fig_contact_shapes.png", "contact normal", "contact normals"),
+            ("long_axes", "fig_orient_shapes.png", "long axis a", "long axes a")):
+        curves = binned(sel.shapes, histogram)
+        shown = [s for s in FIGURE_SHAPES if s in curves]
+        if not shown:
+            print("  %s: skipped (no data)" % fname)
+            continue
+        written.append(histo_figure(
+            [curves[s] + (r"$\eta$=%g $\zeta$=%g (%d seeds)" % (s[0], s[1], len(sel.phi[s])),)
+             for s in shown], os.path.join(out, fname),
+            r"%s, $\delta_r$ = %g, %s; error bars: pooled seed SD per bin" % (title, dr0, tag),
+            r"$\theta$ (%s vs +z)" % what, crossing_marks(claims, histogram)))
+    by_shape = Counter(s for (d, name), v in sels.items() if name == law for s in v.shapes)
+    shape = FIG6B if by_shape.get(FIG6B, 0) >= 2 else max(by_shape, key=lambda s: (by_shape[s],
+                                                                                    s))
+    if shape != FIG6B:
+        print("  fig_contact_dr.png: (1.6, 1.8) lacks several delta_r; shows %s" % (shape,))
+    drs = sorted(d for (d, name), v in sels.items() if name == law and shape in v.shapes)
+    if len(drs) >= 2:
+        curves = [binned(sels[(d, law)].shapes, "contact_normals")[shape]
+                  + (r"$\delta_r$ = %g (%d seeds)" % (d, len(sels[(d, law)].phi[shape])),)
+                  for d in drs]
+        written.append(histo_figure(
+            curves, os.path.join(out, "fig_contact_dr.png"),
+            r"contact normals, $\eta$=%g $\zeta$=%g, %s; error bars: pooled seed SD per bin"
+            % (shape[0], shape[1], tag), r"$\theta$ (contact normal vs +z)"))
+    return written
 
 
 def main(argv=None):
@@ -199,47 +232,33 @@ def main(argv=None):
         sys.exit("plot_figures: %s has no rows" % args.table)
     law = args.law or most_common(rows, "law")
     n = args.N or most_common([r for r in rows if r["law"] == law], "N")
-    all_laws = [r for r in rows if r["N"] == n]
-    rows = [r for r in all_laws if r["law"] == law]
-    if not rows:
-        sys.exit("plot_figures: no point with law %s and N %d in %s" % (law, n, args.table))
-    table_dir = os.path.dirname(os.path.abspath(args.table))
-    out = os.path.abspath(args.out or table_dir)
+    results = os.path.dirname(os.path.abspath(args.table))
+    groups = {}
+    for d in load_deposits(results, n):
+        groups.setdefault((float(d["delta_r"]), d["law"]), []).append(d)
+    sels = {k: Selection(v) for k, v in sorted(groups.items())}
+    if not any(name == law for _, name in sels):
+        sys.exit("plot_figures: no deposit with law %s and N %d in %s" % (law, n, results))
+    out = os.path.abspath(args.out or results)
     os.makedirs(out, exist_ok=True)
-    dr0 = min(r["delta_r"] for r in rows)
+    claims_path = os.path.join(results, "claims.json")
+    claims = json.load(open(claims_path)) if os.path.exists(claims_path) else None
+    dr0 = min(d for d, name in sels if name == law)
     tag = "N %d, %s" % (n, law)
-    written = [
-        shape_map(rows, dr0, "phi", out, "fig_density_map.png", r"$\phi$",
-                  r"volume fraction, $\delta_r$ = %g, %s" % (dr0, tag)),
-        density_lines(rows, out, dr0),
-        shape_map(rows, dr0, "Z", out, "fig_z_map.png", r"$Z$",
-                  r"coordination number, $\delta_r$ = %g, %s" % (dr0, tag)),
-        shape_map(rows, dr0, "Z_no_rattlers", out, "fig_z_norattler_map.png", r"$Z$",
-                  r"Z without rattlers, $\delta_r$ = %g, %s" % (dr0, tag)),
-    ]
-    shapes = sorted((r for r in rows if r["delta_r"] == dr0),
-                    key=lambda r: (r["eta"] * r["zeta"], r["eta"], r["zeta"]))
-    shape_label = lambda r: r"$\eta$=%g $\zeta$=%g" % (r["eta"], r["zeta"])  # noqa: E731
-    written.append(histo_figure(table_dir, shapes, "contact_histo", out, "fig_contact_shapes.png",
-                                r"contact normals, $\delta_r$ = %g, %s" % (dr0, tag),
-                                r"$\theta$ (contact normal vs +z)", shape_label))
-    # the shape with the most delta_r values
-    by_shape = {}
-    for r in rows:
-        by_shape.setdefault((r["eta"], r["zeta"]), []).append(r)
-    best = max(by_shape, key=lambda k: (len(by_shape[k]), k[0] * k[1]))
-    if len(by_shape[best]) >= 2:
-        written.append(histo_figure(table_dir, sorted(by_shape[best], key=lambda r: r["delta_r"]),
-                                    "contact_histo", out, "fig_contact_dr.png",
-                                    r"contact normals, $\eta$=%g $\zeta$=%g, %s" % (best + (tag,)),
-                                    r"$\theta$ (contact normal vs +z)",
-                                    lambda r: r"$\delta_r$=%g" % r["delta_r"]))
-    else:
-        print("  fig_contact_dr.png: skipped (no shape with >= 2 values of delta_r)")
-    written.append(histo_figure(table_dir, shapes, "orient_histo", out, "fig_orient_shapes.png",
-                                r"long axis $a$, $\delta_r$ = %g, %s" % (dr0, tag),
-                                r"$\theta$ (long axis vs +z)", shape_label))
-    written.append(density_laws(all_laws, out))
+    base = sels[(dr0, law)]
+    written = []
+    for q, fname, label, fmt in (("phi", "fig_density_map.png", r"$\phi$", "%.3f"),
+                                 ("Z", "fig_z_map.png", "Z", "%.2f"),
+                                 ("Z_no_rattlers", "fig_z_norattler_map.png",
+                                  "Z without rattlers", "%.2f")):
+        if base.has(q):
+            written.append(map_figure(base.quantity(q), os.path.join(out, fname), label,
+                                      r"%s, $\delta_r$ = %g, %s" % (label, dr0, tag), fmt))
+    written.append(density_lines(sels, law, dr0, claims, out))
+    written += shape_figures(sels, law, dr0, claims, out, tag)
+    written.append(density_laws(sels, dr0, out))
+    for sizes in sorted(glob.glob(os.path.join(results, "sizes_*.csv")))[:1]:
+        written.append(sizes_figure(sizes, os.path.join(out, "fig_sizes.png"))[0])
     written = [w for w in written if w]
     print("plot_figures: wrote\n  " + "\n  ".join(written))
     return written

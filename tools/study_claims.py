@@ -8,25 +8,30 @@ claims.json into the results folder (and prints it as markdown). The deposits ar
 selection at a time: those of one delta_r and one tangential law. `--law` names the default
 law (the study's); the first three keys are its deposits at delta_r = 0:
 
+Errors: a shape's standard error is the seed-to-seed SD pooled over its group of shapes in
+its selection, / sqrt(its seeds) (tools/study_stats.py: spheroids, general shapes below and
+above a/c = 4; `errors` lists every group's SD and degrees of freedom per quantity).
+
 * `maxima`: for the diagonal eta = zeta and the prolate (zeta = 1, vs eta) and oblate
-  (eta = 1, vs zeta) lines, the position and height of the density maximum: a parabola
-  through the highest point and its neighbours (five points where there are five), with its
-  uncertainty from a parametric bootstrap: every point's mean is redrawn from a normal
-  distribution with the seed-to-seed standard deviation pooled over all shapes of the
-  selection with two seeds or more, divided by sqrt(its seeds) (no uncertainty while no shape
-  has two seeds; fits whose vertex leaves the window are dropped and counted);
+  (eta = 1, vs zeta) lines, the position and height of the density maximum: the nominal fit
+  is a parabola through the highest point and its neighbours (five points), its error a
+  parametric bootstrap (every point's mean redrawn from a normal distribution with its
+  standard error; fits whose vertex leaves the window are dropped and counted); `fits` holds
+  the 3-, 5- and 7-point parabolas and the 7-point cubic, and half their spread is the
+  fit-window systematic (x_max_sys, phi_max_sys);
 * `symmetry`: phi(eta, zeta) - phi(zeta, eta) over the map's pairs, its mean, and chi^2 per
   pair against the standard errors from the pooled seed SD (about 1 when the map is
   symmetric within the seed scatter);
 * `crossings`: the angle theta in (0, pi/2) at which a shape's P(Omega(theta)) of contact
   normals (and of long axes) crosses the isotropic value 1/(4 pi), per shape, with the
-  standard error over its seeds; the paper reports contact-normal curves crossing "slightly
-  above pi/5" and long-axis curves with an invariant near pi/3;
+  standard error over its seeds (`verdicts` gives it from the pooled SD); the paper reports
+  contact-normal curves crossing "slightly above pi/5" and long-axis curves with an invariant
+  near pi/3;
 * `constant_eta`: for each eta with three values of zeta or more, the maximum of phi over
   zeta (the same fit and bootstrap), to compare zeta_max with eta;
 * `polydispersity`: `density`, for each delta_r > 0 of the default law: per shape present at
   that delta_r and at 0, phi(delta_r) - phi(0) with its standard error (each side's pooled
-  seed SD of its selection / sqrt(its seeds)), grouped by line (diagonal
+  SD of its group / sqrt(its seeds)), grouped by line (diagonal
   with the spheres, prolate, oblate, other), the mean difference over the shapes of each
   line and of all (standard error from the shapes' standard errors), and the diagonal's
   fitted maximum at that delta_r; `histograms`, for each shape present at several
@@ -35,7 +40,9 @@ law (the study's); the first three keys are its deposits at delta_r = 0:
   difference that the seed scatter alone gives (the rms of the difference's standard
   error; null with one seed);
 * `laws`: for each other tangential law and each delta_r it was run at: its diagonal
-  maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings.
+  maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings;
+* `verdicts`: each claim's comparison with its significance and the seeds per point a
+  3-sigma verdict needs (tools/study_verdicts.py, tools/study_histograms.py).
 """
 import argparse
 import csv
@@ -47,7 +54,10 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from deposit_run import read_histo  # noqa: E402
+from deposit_run import read_histo, read_packing  # noqa: E402
+from study_claims_md import markdown  # noqa: E402
+from study_stats import Pooled, line_maximum  # noqa: E402
+from study_verdicts import verdicts  # noqa: E402
 
 ISOTROPIC = 1.0 / (4.0 * math.pi)
 LINES = {"diagonal": (lambda e, z: e == z, "eta"),
@@ -56,7 +66,6 @@ LINES = {"diagonal": (lambda e, z: e == z, "eta"),
 OTHER = "other"    # the group of shapes on none of the lines
 HISTOGRAMS = {"contact_normals": ("contact_histo", False, "contact"),    # name: (file, rising
               "long_axes": ("orient_histo", True, "orient")}             # crossing, summary)
-BOOTSTRAP = 2000
 
 
 def read_csv(path):
@@ -64,51 +73,25 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def fit_maximum(x, y):
-    """vertex of the least-squares parabola through (x, y); None if it opens upwards"""
-    c2, c1, c0 = np.polyfit(x, y, 2)
-    if c2 >= 0:
-        return None
-    xm = -c1 / (2 * c2)
-    return xm, c0 + c1 * xm + c2 * xm * xm
-
-
-def pooled_sd(samples):
-    """seed-to-seed standard deviation pooled over the points that have two seeds or more"""
-    num = sum((len(v) - 1) * np.var(v, ddof=1) for v in samples if len(v) > 1)
-    dof = sum(len(v) - 1 for v in samples if len(v) > 1)
-    return math.sqrt(num / dof) if dof else None
-
-
-def line_maximum(points, sd, rng):
-    """points: [(x, [phi per seed])] sorted by x; sd: the seed-to-seed standard deviation of
-    one deposit (None: unknown). The maximum's position and height."""
-    means = [float(np.mean(v)) for _, v in points]
-    k = int(np.argmax(means))
-    lo = max(0, min(k - 2, len(points) - 5))
-    window = points[lo:lo + 5]
-    if len(window) < 3 or k in (0, len(points) - 1):
-        return {"at_edge": True, "x_highest": points[k][0], "phi_highest": means[k]}
-    x = np.array([p[0] for p in window])
-    best = fit_maximum(x, [float(np.mean(v)) for _, v in window])
-    if best is None:
-        return {"at_edge": False, "x_highest": points[k][0], "phi_highest": means[k],
-                "fit": None}
-    means_w = np.array([float(np.mean(v)) for _, v in window])
-    errors_w = np.array([sd / math.sqrt(len(v)) for _, v in window]) if sd is not None else None
-    draws = []
-    for _ in range(BOOTSTRAP if sd is not None else 0):
-        fit = fit_maximum(x, means_w + rng.normal(0.0, errors_w))
-        if fit is not None and x[0] <= fit[0] <= x[-1]:
-            draws.append(fit)
-    out = {"at_edge": False, "x_highest": points[k][0], "phi_highest": means[k],
-           "x_max": float(best[0]), "phi_max": float(best[1]), "window": x.tolist(),
-           "seed_sd": sd, "bootstrap_draws": BOOTSTRAP if sd is not None else 0,
-           "bootstrap_kept": len(draws)}
-    if draws:
-        d = np.array(draws)
-        out["x_max_sd"] = float(d[:, 0].std(ddof=1))
-        out["phi_max_sd"] = float(d[:, 1].std(ddof=1))
+def maximum_entry(m, seed_sd):
+    """study_stats.line_maximum's result under the keys of claims.json: the highest point,
+    the nominal fit (x_max, phi_max), its bootstrap SD (*_sd) and fit-window systematic
+    (*_sys), every window's fit (`fits`); seed_sd: the pooled SD of the highest point"""
+    out = {"at_edge": m["at_edge"], "x_highest": m["x_highest"], "phi_highest": m["y_highest"],
+           "seed_sd": seed_sd}
+    if m["at_edge"]:
+        return out
+    out["fits"] = m["fits"]
+    if "x_max" not in m:
+        out["fit"] = None
+        return out
+    nominal = m["fits"][m["nominal"]]
+    out.update(x_max=m["x_max"], phi_max=m["y_max"], window=nominal["window"],
+               nominal=m["nominal"], bootstrap_draws=nominal.get("draws", 0),
+               bootstrap_kept=nominal.get("kept", 0), x_max_sys=m["x_sys"],
+               phi_max_sys=m["y_sys"])
+    if "x_sd" in m:
+        out.update(x_max_sd=m["x_sd"], phi_max_sd=m["y_sd"])
     return out
 
 
@@ -119,32 +102,50 @@ def line_of(eta, zeta):
 
 class Selection:
     """the deposits of one delta_r and one tangential law: per shape its deposits and phi
-    per seed, and the seed-to-seed SD of phi pooled over the shapes"""
+    per seed, and the seed-to-seed SD of phi pooled per group of shapes (study_stats)"""
 
     def __init__(self, deposits):
         self.deposits = deposits
         self.shapes = {}
         for d in deposits:
             self.shapes.setdefault((float(d["eta"]), float(d["zeta"])), []).append(d)
-        self.phi = {s: [float(d["phi"]) for d in v] for s, v in sorted(self.shapes.items())}
-        self.sd = pooled_sd(list(self.phi.values()))
+        self.shapes = dict(sorted(self.shapes.items()))
+        self.phi = {s: [float(d["phi"]) for d in v] for s, v in self.shapes.items()}
+        self.pooled = Pooled(self.phi)
+
+    def has(self, name):
+        """whether every deposit has a value of this column (older tables lack some)"""
+        return all(d.get(name) not in (None, "") for d in self.deposits)
+
+    def quantity(self, name):
+        """the pooled SDs of another column of deposits.csv"""
+        return Pooled({s: [float(d[name]) for d in v] for s, v in self.shapes.items()})
 
     def line(self, name):
-        """[(x, [phi per seed])] along a line of LINES, spheres included, sorted by x"""
+        """[(x, shape)] along a line of LINES, spheres included, sorted by x"""
         on_line, axis = LINES[name]
-        return sorted(((e if axis == "eta" else z), v) for (e, z), v in self.phi.items()
+        return sorted(((e if axis == "eta" else z), (e, z)) for (e, z) in self.phi
                       if on_line(e, z) or (e == z == 1.0))
+
+    def maximum(self, points, rng, pooled=None):
+        """the maximum along [(x, shape)] of phi (or of another Pooled quantity)"""
+        pooled = pooled or self.pooled
+        shapes = [s for _, s in points]
+        errors = [pooled.se(s) for s in shapes]
+        m = line_maximum([x for x, _ in points], [pooled.mean(s) for s in shapes],
+                         None if None in errors else errors, rng)
+        highest = shapes[int(np.argmax([pooled.mean(s) for s in shapes]))]
+        return maximum_entry(m, pooled.sd(highest))
 
     def line_maximum(self, name, rng):
         """the fitted maximum along a line; None with fewer than three points on it"""
         points = self.line(name)
-        return line_maximum(points, self.sd, rng) if len(points) >= 3 else None
+        return self.maximum(points, rng) if len(points) >= 3 else None
 
     def standard_error(self, shape):
-        """of the shape's mean phi: the pooled seed SD / sqrt(its seeds). With 2-3 seeds a
-        point's own SD has 1-2 degrees of freedom: ratios to it scatter far more than
-        chi^2 does; the bootstrap uses the same model. None while no shape has two seeds."""
-        return self.sd / math.sqrt(len(self.phi[shape])) if self.sd is not None else None
+        """of the shape's mean phi: its group's pooled seed SD / sqrt(its seeds). None while
+        its group has no shape with two seeds."""
+        return self.pooled.se(shape)
 
 
 def crossing(theta, p, rising):
@@ -161,7 +162,7 @@ def crossing(theta, p, rising):
 def mean_crossing(deposits, histogram):
     """{theta, sem, seeds} over the deposits (of one shape) whose curve crosses; None if none"""
     name, rising, _ = HISTOGRAMS[histogram]
-    v = [x for x in (crossing(*d[name], rising) for d in deposits) if x is not None]
+    v = [x for x in (crossing(*d[name][:2], rising) for d in deposits) if x is not None]
     if not v:
         return None
     sem = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else None
@@ -193,10 +194,9 @@ def symmetry(selection):
         if e < z and (z, e) in phi:
             w = phi[(z, e)]
             diffs.append(float(np.mean(v) - np.mean(w)))
-            if selection.sd:
-                se_v, se_w = selection.standard_error((e, z)), selection.standard_error((z, e))
-                var = se_v ** 2 + se_w ** 2
-                chi2.append(diffs[-1] ** 2 / var)
+            se_v, se_w = selection.standard_error((e, z)), selection.standard_error((z, e))
+            if se_v is not None and se_w is not None:
+                chi2.append(diffs[-1] ** 2 / (se_v ** 2 + se_w ** 2))
     return {"pairs": len(diffs),
             "mean_difference": float(np.mean(diffs)) if diffs else None,
             "rms_difference": float(np.sqrt(np.mean(np.square(diffs)))) if diffs else None,
@@ -208,10 +208,10 @@ def constant_eta(selection, rng):
     """the maximum over zeta along each eta with three values of zeta or more"""
     out = []
     for eta in sorted({e for e, _ in selection.phi}):
-        points = sorted((z, v) for (e, z), v in selection.phi.items() if e == eta)
+        points = sorted((z, (e, z)) for (e, z) in selection.phi if e == eta)
         if len(points) >= 3:
             out.append(dict({"eta": eta, "zetas": len(points)},
-                            **line_maximum(points, selection.sd, rng)))
+                            **selection.maximum(points, rng)))
     return out
 
 
@@ -294,7 +294,10 @@ def load_deposits(results, n):
     for d in deposits:
         d["folder"] = os.path.join(results, "points", d["point"], "s%s" % d["seed"])
         for name, _, _ in HISTOGRAMS.values():
-            d[name] = read_histo(os.path.join(d["folder"], name + ".dat"))[:2]
+            d[name] = read_histo(os.path.join(d["folder"], name + ".dat"))
+        path = os.path.join(d["folder"], "packing.dat")
+        pk = read_packing(path) if os.path.exists(path) else {}
+        d["slab"] = pk["zhi"] - pk["zlo"] if "zhi" in pk else None
     return deposits
 
 
@@ -329,105 +332,8 @@ def claims(results, law, n):
                                                                           Selection([]))),
                     "crossings": crossings(sel)}
                    for (dr, name), sel in selections.items() if name != law]
+    out["verdicts"] = verdicts(out, selections, law)
     return out
-
-
-def number(value, spec):
-    return "-" if value is None else spec % value
-
-
-def maximum_cells(m):
-    """highest point, fitted maximum and its bootstrap SD of a line_maximum result"""
-    if m is None:
-        return ["-", "fewer than 3 points", "-"]
-    fit = ("%.3f, %.4f" % (m["x_max"], m["phi_max"])) if "x_max" in m else (
-        "at the line's edge" if m["at_edge"] else "no maximum in the window")
-    err = ("%.3f, %.4f" % (m["x_max_sd"], m["phi_max_sd"])) if "x_max_sd" in m else "-"
-    return ["%g, %.4f" % (m["x_highest"], m["phi_highest"]), fit, err]
-
-
-def row(cells):
-    return "| " + " | ".join(cells) + " |"
-
-
-def crossing_cell(c):
-    if c is None:
-        return "-"
-    return "%.3f%s (%d)" % (c["theta"], "" if c["sem"] is None else " +- %.3f" % c["sem"],
-                            c["seeds"])
-
-
-def difference_cell(d):
-    return "%.2e vs %s" % (d["rms_difference"],
-                           "one seed" if d["rms_seed_scatter"] is None
-                           else "%.2e" % d["rms_seed_scatter"])
-
-
-def markdown(c):
-    lines = ["| line | highest point | fitted maximum (x, phi) | +- (bootstrap SD) |",
-             "|---|---|---|---|"]
-    for name, m in c["maxima"].items():
-        lines.append(row([name] + maximum_cells(m)))
-    s = c["symmetry"]
-    lines.append("")
-    lines.append("symmetry: %d pairs, mean phi(eta<zeta) - phi(eta>zeta) %s, rms %s, chi2/pair %s"
-                 % (s["pairs"], s["mean_difference"], s["rms_difference"], s["chi2_per_pair"]))
-    for key, label in (("contact", "contact normals"), ("orient", "long axes")):
-        m = c["crossings"]["summary"][key]
-        if m["mean"] is not None:
-            lines.append("%s cross 1/(4 pi) at %.3f rad = %.3f pi (SD over %d shapes %s)"
-                         % (label, m["mean"], m["mean"] / math.pi, m["shapes"],
-                            "%.3f" % m["sd_over_shapes"] if m["sd_over_shapes"] else "-"))
-    if c["constant_eta"]:
-        lines += ["", "constant eta: the maximum over zeta",
-                  "| eta | zetas | highest point (zeta, phi) | fitted maximum (zeta, phi) "
-                  "| +- | zeta_max - eta |", "|---|---|---|---|---|---|"]
-        for m in c["constant_eta"]:
-            lines.append(row(["%g" % m["eta"], "%d" % m["zetas"]] + maximum_cells(m)
-                             + [("%+.3f" % (m["x_max"] - m["eta"])) if "x_max" in m else "-"]))
-    if c["polydispersity"]["density"]:
-        lines += ["", "polydispersity: phi(delta_r) - phi(0), mean over the shapes",
-                  "| delta_r | group | shapes | mean | +- | SD over shapes |",
-                  "|---|---|---|---|---|---|"]
-        for p in c["polydispersity"]["density"]:
-            for group, m in p["phi_difference"]["mean"].items():
-                if m["shapes"]:
-                    lines.append(row(["%g" % p["delta_r"], group, "%d" % m["shapes"],
-                                      "%+.4f" % m["mean"], number(m["sem"], "%.4f"),
-                                      number(m["sd_over_shapes"], "%.4f")]))
-        lines += ["", "| delta_r | diagonal: highest point | fitted maximum | +- |",
-                  "|---|---|---|---|"]
-        for p in c["polydispersity"]["density"]:
-            lines.append(row(["%g" % p["delta_r"]] + maximum_cells(p["diagonal_maximum"])))
-    if c["polydispersity"]["histograms"]:
-        lines += ["", "histograms against delta_r: crossing angle +- sem (seeds); rms of the "
-                  "difference from delta_r 0 vs the rms the seed scatter gives",
-                  "| eta, zeta | delta_r | contact crossing | long-axis crossing "
-                  "| contact difference | long-axis difference |", "|---|---|---|---|---|---|"]
-        for h in c["polydispersity"]["histograms"]:
-            diffs = {d["delta_r"]: d for d in h["differences"]}
-            for p in h["per_delta_r"]:
-                d = diffs.get(p["delta_r"])
-                lines.append(row(["%g, %g" % (h["eta"], h["zeta"]), "%g" % p["delta_r"],
-                                  crossing_cell(p["contact_normals"]),
-                                  crossing_cell(p["long_axes"])]
-                                 + ([difference_cell(d[k]) for k in HISTOGRAMS] if d
-                                    else ["-", "-"])))
-    if c["laws"]:
-        lines += ["", "tangential laws against %s" % c["law"],
-                  "| law | delta_r | diagonal: highest point | fitted maximum | +- "
-                  "| mean phi difference (shapes) | +- | contact crossing | long-axis crossing |",
-                  "|---|---|---|---|---|---|---|---|---|"]
-        for m in c["laws"]:
-            mean = m["phi_difference"]["mean"]["all"]
-            summary = m["crossings"]["summary"]
-            lines.append(row(
-                [m["law"], "%g" % m["delta_r"]] + maximum_cells(m["diagonal_maximum"])
-                + ["%s (%d)" % (number(mean["mean"], "%+.4f"), mean["shapes"]),
-                   number(mean["sem"], "%.4f")]
-                + ["%s (%d shapes)" % (number(summary[k]["mean"], "%.3f"), summary[k]["shapes"])
-                   for k in ("contact", "orient")]))
-    return "\n".join(lines)
 
 
 def main(argv=None):

@@ -67,19 +67,20 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
       wall_material_given = true;
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
-      if (particle_law.normal.kind != NormalModel::Kind::HertzMaterial)
+      if (!std::holds_alternative<HertzMaterialNormal>(particle_law.normal))
         error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: wall_material needs hertz/material");
       ForceLaw wall_side = particle_law;
+      auto &wall_normal = std::get<HertzMaterialNormal>(wall_side.normal);
       const std::string value = arg[iarg + 1];
       if (value == "rigid") {
         // an undeformable wall: no compliance, 1/E* = (1 - nu^2)/E of the particle
-        wall_side.normal.youngs = HUGE_VAL;
+        wall_normal.youngs = HUGE_VAL;
         iarg += 2;
       } else if (utils::is_double(value)) {
         if (iarg + 3 > narg)
           utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid wall_material E nu", error);
-        wall_side.normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-        wall_side.normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        wall_normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+        wall_normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
         message = wall_side.validate();
         if (!message.empty())
           error->all(FLERR, iarg, "Fix wall/gran/ellipsoid wall_material: {}", message);
@@ -89,12 +90,20 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
         message = lookup(value, material);
         if (!message.empty())
           error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid wall_material: {}", message);
-        wall_side.normal.youngs = material.youngs;
-        wall_side.normal.poisson = material.poisson;
+        wall_normal.youngs = material.youngs;
+        wall_normal.poisson = material.poisson;
         iarg += 2;
       }
       // the pair's mixing rule: the restitution stays the particle law's
       mix_laws(particle_law, wall_side, law);
+      continue;
+    }
+    if (word == "wiggle" || word == "shear") {
+      iarg += parse_motion(iarg, narg, arg);
+      continue;
+    }
+    if (word == "servo") {
+      iarg += parse_servo(iarg, narg, arg);
       continue;
     }
     if (word == "impact_velocity") {
@@ -115,7 +124,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     if (dim < 0)
       error->all(FLERR, iarg,
                  "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane, zplane, wall_material, impact_velocity, or a force-law word)",
+                 "yplane, zplane, wall_material, wiggle, shear, servo, impact_velocity, "
+                 "or a force-law word)",
                  word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
@@ -149,10 +159,25 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   }
   if (walls.empty())
     error->all(FLERR, "Fix wall/gran/ellipsoid: every wall is NULL; nothing to do");
+  if (motion.kind == Motion::Kind::Shear)
+    for (const WallSurface &w : walls)
+      if (w.normal[motion.dim] != 0.0)
+        error->all(FLERR,
+                   "Fix wall/gran/ellipsoid: shear along {} would move a wall normal to {} "
+                   "into the particles (use wiggle)",
+                   "xyz"[motion.dim], "xyz"[motion.dim]);
+  if (motion.kind == Motion::Kind::Servo && walls.size() != 1)
+    error->all(FLERR, "Fix wall/gran/ellipsoid servo moves one wall: give one lo or hi wall (the "
+                      "other walls in a fix of their own)");
+  for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
+  restart_global = motion.kind != Motion::Kind::None ? 1 : 0;
+  motion.time_origin = update->ntimestep;
+  wall_velocity = Vec3::Zero();
 
   const int nwalls = static_cast<int>(walls.size());
   vector_flag = 1;
-  size_vector = 3 * nwalls;
+  // a servo's wall also reports where it is (its coordinate along its normal's dimension)
+  size_vector = 3 * nwalls + (motion.kind == Motion::Kind::Servo ? 1 : 0);
   global_freq = 1;
   extvector = 1;
   create_attribute = 1;
@@ -227,6 +252,7 @@ void FixWallGranEllipsoid::update_contact_times()
 
 void FixWallGranEllipsoid::setup(int vflag)
 {
+  if (motion.kind != Motion::Kind::Servo) move_walls();
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal;
   double counts[2] = {0.0, 0.0};
@@ -257,7 +283,7 @@ void FixWallGranEllipsoid::setup(int vflag)
                    "than half their smallest semi-axis at setup",
                    all[1]);
 
-  // setup forces must not advance the tangential history
+  // setup forces must not advance the law's history
   history_update = false;
   post_force(vflag);
   history_update = true;
@@ -273,6 +299,8 @@ void FixWallGranEllipsoid::post_force(int /*vflag*/)
 void FixWallGranEllipsoid::wall_forces()
 {
   force_flag = 0;
+  // a servo moves at time steps only (setup forces look without moving anything)
+  if (history_update || motion.kind != Motion::Kind::Servo) move_walls();
   std::fill(wall_force.begin(), wall_force.end(), 0.0);
 
   const EllipsoidAtoms atoms(atom);
@@ -312,14 +340,25 @@ void FixWallGranEllipsoid::wall_forces()
         atoms.add_motion(i, state);
         moving = true;
       }
-      const TangentialHistory tangential(history, history_update);
-      const ContactForce result = law.compute(g, wall_motion(state, g.point), dt, tangential.get());
+      // setup forces look at the stored history without advancing it (on a copy, dt 0), as
+      // the pair's do: a step's displacement there would push the particle once, unrecorded
+      const LawHistory law_history(history, law.history_size(), history_update);
+      const ContactForce result = law.compute(g, wall_motion(state, g.point, wall_velocity),
+                                              history_update ? dt : 0.0, law_history.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];
         wall_force[3 * k + d] -= result.force_i[d];
       }
     }
+  }
+  // the servo's measure for the next step: the particles' push on its wall, along -n
+  if (motion.kind == Motion::Kind::Servo) {
+    MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
+                  MPI_DOUBLE, MPI_SUM, world);
+    force_flag = 1;
+    motion.force = -Vec3(wall_force_all[0], wall_force_all[1], wall_force_all[2])
+                        .dot(walls[0].normal);
   }
 }
 
@@ -334,6 +373,11 @@ double FixWallGranEllipsoid::compute_vector(int n)
     MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
                   MPI_DOUBLE, MPI_SUM, world);
     force_flag = 1;
+  }
+  if (n == 3 * static_cast<int>(walls.size())) {    // the servo's wall coordinate
+    const Vec3 &normal = walls[0].normal;
+    for (int d = 0; d < 3; d++)
+      if (normal[d] != 0.0) return walls[0].offset / normal[d];
   }
   return wall_force_all[n];
 }

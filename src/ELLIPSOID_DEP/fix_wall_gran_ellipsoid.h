@@ -34,6 +34,8 @@ class FixWallGranEllipsoid : public Fix {
   void set_arrays(int) override;
   int pack_exchange(int, double *) override;
   int unpack_exchange(int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   int pack_restart(int, double *) override;
   void unpack_restart(int, int) override;
   int size_restart(int) override;
@@ -43,10 +45,31 @@ class FixWallGranEllipsoid : public Fix {
   const EllipsoidDep::ForceLaw &force_law() const { return law; }
 
  private:
-  // the walls' surfaces in the kernel's terms (planes: xplane, yplane, zplane)
+  // the walls' surfaces in the kernel's terms (planes: xplane, yplane, zplane), at this step
   std::vector<EllipsoidDep::WallSurface> walls;
+  // wiggle or shear, as fix wall/gran's: every wall of the fix moves along dim; a wiggled
+  // wall normal to dim is at rest_offset + A (1 - cos(omega t)) along its normal's dim
+  // component, t from the step the fix was defined at
+  // servo: the one wall moves along its normal n at u = G (F_target - F), |u| <= vmax, F the
+  // normal force the particles exerted on it at the previous step
+  struct Motion {
+    enum class Kind { None, Wiggle, Shear, Servo } kind = Kind::None;
+    int dim = -1;
+    double amplitude = 0.0, omega = 0.0, vshear = 0.0;
+    bigint time_origin = 0;
+    bool stress = false;          // servo target: a stress (times the box's cross-section)
+    double target = 0.0, gain = 0.0, vmax = 0.0;
+    double force = 0.0;           // servo: the particles' push on the wall, last step
+    double speed = 0.0;           // servo: u of this step
+  } motion;
+  std::vector<double> rest_offset;     // the walls' offsets when the wiggle's phase is 0
+  EllipsoidDep::Vec3 wall_velocity;    // of every wall, at this step
+  int parse_motion(int iarg, int narg, char **arg);
+  int parse_servo(int iarg, int narg, char **arg);
+  void move_walls();
+  double servo_target() const;    // in force units
   EllipsoidDep::ForceLaw law;
-  int size_history;        // the law's history size per wall (tangential displacement)
+  int size_history;        // the law's history size times the number of walls
   double **history_one;    // per atom, per wall
   bool history_update;
   double impact_velocity;          // keyword; 0: the fastest atom of the group
@@ -58,7 +81,7 @@ class FixWallGranEllipsoid : public Fix {
   int force_flag;
 
   void wall_forces();
-  // the tangential displacement of atom i against wall k (null without history)
+  // the law's history of atom i against wall k (null without history)
   double *wall_history(int i, int k) const
   {
     return size_history ? &history_one[i][law.history_size() * k] : nullptr;

@@ -1,7 +1,7 @@
 /* ----------------------------------------------------------------------
-   ELLIPSOID_DEP: fix wall/gran/ellipsoid, the per-atom wall history (the tangential
-   displacement of each atom against each wall): growth, exchange between ranks and restart
-   files, so that it travels with its atom
+   ELLIPSOID_DEP: fix wall/gran/ellipsoid, the per-atom wall history (the force law's history
+   of each atom against each wall, ForceLaw::history_size() doubles): growth, exchange between
+   ranks and restart files, so that it travels with its atom
 ------------------------------------------------------------------------- */
 
 #include "fix_wall_gran_ellipsoid.h"

@@ -16,11 +16,11 @@ using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 
 bool Candidates::refresh(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
-                         bool tangential_slots, bool respa, PipelineCounters &counters)
+                         int law_slots, bool respa, PipelineCounters &counters)
 {
   if (!stale(lmp, list, respa)) return false;
   if (lmp->neighbor->ago == 0 && builds_keep_skin(lmp, respa))
-    find(lmp, list, history, stride, tangential_slots, counters);
+    find(lmp, list, history, stride, law_slots, counters);
   else
     all(lmp, list);
   return true;
@@ -56,7 +56,7 @@ bool Candidates::stale(LAMMPS *lmp, NeighList *list, bool respa) const
 ------------------------------------------------------------------------- */
 
 void Candidates::find(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
-                      bool tangential_slots, PipelineCounters &counters)
+                      int law_slots, PipelineCounters &counters)
 {
   Atom *atom = lmp->atom;
   const int inum = list->inum, nall = atom->nlocal + atom->nghost;
@@ -81,7 +81,7 @@ void Candidates::find(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, in
           bounding_test(ci, ri, Vec3(x[j][0], x[j][1], x[j][2]), atoms.bounding_radius(j));
       const bool beyond_skin = t.dist > t.reach + skin;
       if (beyond_skin &&
-          forget_if_apart(t, rows + stride * k, touch[k], tangential_slots, counters)) {
+          forget_if_apart(t, rows + stride * k, touch[k], law_slots, counters)) {
         ++aside;
         continue;
       }

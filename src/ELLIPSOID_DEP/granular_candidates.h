@@ -15,6 +15,7 @@
 
 #include "lmptype.h"
 
+#include "ellipsoid_force_law.h"
 #include "ellipsoid_kernel.h"
 
 #include <cstddef>
@@ -30,9 +31,9 @@ class Candidates {
  public:
   // The candidates of the current list, found again when they are stale (true then; the
   // rejects of a new search are counted in counters); the history rows are `stride` doubles,
-  // with the tangential slots when tangential_slots. respa: the run is an r-RESPA run.
+  // the last law_slots of them the force law's. respa: the run is an r-RESPA run.
   bool refresh(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
-               bool tangential_slots, bool respa, EllipsoidDep::PipelineCounters &counters);
+               int law_slots, bool respa, EllipsoidDep::PipelineCounters &counters);
 
   // i's candidates (the ii-th atom of the list): count(ii) neighbour indices jj from first(ii)
   const int *first(int ii) const { return jj.data() + start[ii]; }
@@ -61,20 +62,21 @@ class Candidates {
 
   bool stale(LAMMPS *lmp, NeighList *list, bool respa) const;
   void find(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
-            bool tangential_slots, EllipsoidDep::PipelineCounters &counters);
+            int law_slots, EllipsoidDep::PipelineCounters &counters);
   void all(LAMMPS *lmp, NeighList *list);
 };
 
-// A pair whose bounding spheres are apart (true): its history row cleared, tangential slots
-// too, not kept at the next list build (touch 0), counted as a bounding reject.
-// tangential_slots is a local of the caller's: a member would be reloaded after every store
-// through touch.
+// A pair whose bounding spheres are apart (true): its history row cleared (the law's
+// law_slots too), not kept at the next list build (touch 0), counted as a bounding reject.
+// law_slots is a local of the caller's: a member would be reloaded after every store through
+// touch.
 inline bool forget_if_apart(const EllipsoidDep::BoundingTest &t, double *history, int &touch,
-                            bool tangential_slots, EllipsoidDep::PipelineCounters &counters)
+                            int law_slots, EllipsoidDep::PipelineCounters &counters)
 {
   if (!EllipsoidDep::reject_apart(t, history, counters)) return false;
   touch = 0;
-  if (tangential_slots) EllipsoidDep::PairCache(history).clear_tangential();
+  EllipsoidDep::PairHistory(history).clear_law<EllipsoidDep::ForceLaw::MAX_HISTORY_SIZE>(
+      law_slots);
   return true;
 }
 

@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   ELLIPSOID_DEP: the Hertz contact time a run must resolve (see granular_contact_time.h)
+   ELLIPSOID_DEP: the contact time a run must resolve (see granular_contact_time.h)
 ------------------------------------------------------------------------- */
 
 #include "granular_contact_time.h"
@@ -46,11 +46,13 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
   return scales;
 }
 
-void ContactTimes::add(double contact, double damping, const std::string &where)
+void ContactTimes::add(double contact, double damping, const std::string &where,
+                       const std::string &law)
 {
   if (contact_time == 0.0 || contact < contact_time) {
     contact_time = contact;
     contact_where = where;
+    contact_law = law;
   }
   if (damping_time == 0.0 || damping < damping_time) {
     damping_time = damping;
@@ -63,10 +65,9 @@ void ContactTimes::add_contact(LAMMPS *lmp, const EllipsoidDep::ForceLaw &law,
                                double impact_speed, const std::string &where)
 {
   const double ftm2v = lmp->force->ftm2v;
-  add(EllipsoidDep::hertz_contact_time(law.hertz_stiffness(effective_radius), effective_mass,
-                                       impact_speed, ftm2v),
-      EllipsoidDep::hertz_damping_time(law, effective_radius, effective_mass, impact_speed, ftm2v),
-      where);
+  add(law.contact_time(effective_radius, effective_mass, impact_speed, ftm2v),
+      law.damping_time(effective_radius, effective_mass, impact_speed, ftm2v), where,
+      law.elastic_law());
 }
 
 namespace {
@@ -84,16 +85,17 @@ void LAMMPS_NS::report_contact_times(LAMMPS *lmp, const std::string &who,
   last_reported.timestep = dt;
   if (changed(times.contact_time, last_reported.contact_time)) {
     utils::logmesg(lmp,
-                   "{}: Hertz contact time {:.6g} ({}, impact speed {:.6g}) = {:.1f} time steps\n",
-                   who, times.contact_time, times.contact_where, speed, times.contact_time / dt);
+                   "{}: {} contact time {:.6g} ({}, impact speed {:.6g}) = {:.1f} time steps\n",
+                   who, times.contact_law, times.contact_time, times.contact_where, speed,
+                   times.contact_time / dt);
     last_reported.contact_time = times.contact_time;
   }
   if (dt > CONTACT_TIME_FRACTION * times.contact_time)
     lmp->error->warning(FLERR,
-                        "{}: timestep {:.6g} exceeds {} of the Hertz contact time {:.6g} ({}, "
+                        "{}: timestep {:.6g} exceeds {} of the {} contact time {:.6g} ({}, "
                         "impact speed {:.6g}): contacts are resolved by fewer than {:.0f} steps",
-                        who, dt, CONTACT_TIME_FRACTION, times.contact_time, times.contact_where,
-                        speed, 1.0 / CONTACT_TIME_FRACTION);
+                        who, dt, CONTACT_TIME_FRACTION, times.contact_law, times.contact_time,
+                        times.contact_where, speed, 1.0 / CONTACT_TIME_FRACTION);
   // an undamped law has no damping time to report
   if (!std::isfinite(times.damping_time)) return;
   const double number = dt / times.damping_time;

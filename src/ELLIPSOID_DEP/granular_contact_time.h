@@ -1,10 +1,10 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: the time scales of a contact a run must resolve, for the pair style and the
-   wall: the Hertz contact time and the damping time m* / gamma at the deepest overlap.
-   Per type the lightest atom and the flattest surface (largest Gaussian curvature radius,
-   ab/c for semi-axes a >= b >= c) give the shortest of that type; the styles combine them
-   with their laws (ContactTimes::add_contact: EllipsoidDep::hertz_contact_time and
-   EllipsoidDep::hertz_damping_time in the unit style's time) and report the shortest.
+   wall: the contact time of the law's undamped impact and the damping time m* / gamma at its
+   deepest overlap. Per type the lightest atom and the flattest surface (largest Gaussian
+   curvature radius, ab/c for semi-axes a >= b >= c) give the shortest of that type; the
+   styles combine them with their laws (ContactTimes::add_contact: ForceLaw::contact_time and
+   ForceLaw::damping_time in the unit style's time) and report the shortest.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANULAR_CONTACT_TIME_H
@@ -40,9 +40,10 @@ ContactScales contact_scales(LAMMPS *lmp, int groupbit);
 struct ContactTimes {
   double contact_time = 0.0, damping_time = 0.0;    // damping: HUGE_VAL for an undamped law
   std::string contact_where, damping_where;
-  double timestep = 0.0;    // of the last report (last_reported only)
+  std::string contact_law;    // the shortest contact time's law (ForceLaw::elastic_law)
+  double timestep = 0.0;      // of the last report (last_reported only)
   // keeps the shorter of each
-  void add(double contact, double damping, const std::string &where);
+  void add(double contact, double damping, const std::string &where, const std::string &law);
   // the contact and damping times of one contact (law, R*, m* in mass units, impact speed)
   // in the time unit of the run: the law's times with LAMMPS's force->ftm2v, without which
   // units real, metal and electron got them wrong (doc/robustness.md)
@@ -50,11 +51,12 @@ struct ContactTimes {
                    double effective_mass, double impact_speed, const std::string &where);
 };
 
-// Logs "who: Hertz contact time ..." and "who: damping number ..." on rank 0 and warns when
-// the timestep exceeds CONTACT_TIME_FRACTION of the contact time or DAMPING_NUMBER_BOUND
-// damping times; speed: the impact speed. The log lines are left out while the timestep is
-// that of last_reported (rank 0's last logged values, updated) and each time stays within 10 %
-// of it; the warnings are repeated at every run start.
+// Logs "who: Hertz contact time ..." (the law's name, ForceLaw::elastic_law) and "who: damping
+// number ..." on rank 0 and warns when the timestep exceeds CONTACT_TIME_FRACTION of the
+// contact time or DAMPING_NUMBER_BOUND damping times; speed: the impact speed. The log lines
+// are left out while the timestep is that of last_reported (rank 0's last logged values,
+// updated) and each time stays within 10 % of it; the warnings are repeated at every run
+// start.
 void report_contact_times(LAMMPS *lmp, const std::string &who, const ContactTimes &times,
                           double speed, ContactTimes &last_reported);
 }    // namespace LAMMPS_NS

@@ -153,11 +153,14 @@ inline EllipsoidDep::ContactMotion contact_motion(const EllipsoidState &i, const
   return m;
 }
 
-// Motion at the contact point x of atom i with a wall at rest (body j): effective mass m_i.
-inline EllipsoidDep::ContactMotion wall_motion(const EllipsoidState &i, const EllipsoidDep::Vec3 &x)
+// Motion at the contact point x of atom i with a wall (body j) translating at v_wall, without
+// turning: effective mass m_i.
+inline EllipsoidDep::ContactMotion wall_motion(const EllipsoidState &i, const EllipsoidDep::Vec3 &x,
+                                               const EllipsoidDep::Vec3 &v_wall)
 {
   EllipsoidDep::ContactMotion m;
   m.v_i = i.velocity;
+  m.v_j = v_wall;
   m.omega_i = i.omega;
   m.branch_i = x - i.shape.center;
   m.effective_mass = i.mass;

@@ -34,14 +34,14 @@ static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
 // the contacts start afresh.
 static std::string history_fix_id(int size)
 {
-  return fmt::format("NEIGH_HISTORY_GRANULAR_ELLIPSOID_V{}_{}", PairCache::LAYOUT_VERSION, size);
+  return fmt::format("NEIGH_HISTORY_GRANULAR_ELLIPSOID_V{}_{}", PairHistory::LAYOUT_VERSION, size);
 }
 
 /* ---------------------------------------------------------------------- */
 
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
-    fix_history(nullptr), size_history(PairCache::size(false)), history_update(true),
+    fix_history(nullptr), size_history(PairHistory::size(0)), history_update(true),
     freeze_group_bit(0), respa_run(false), restart_history_layout(0), restart_history_size(0),
     impact_velocity(0.0), contact_time(0.0), damping_time(0.0)
 {
@@ -52,7 +52,7 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
                "Pair granular/ellipsoid can be used only once (pair_style hybrid lists it "
                "more than once)");
   // Pair's defaults kept: single() and restart info enabled; fix NEIGH_HISTORY's default
-  // transfer, which negates every value when i and j swap, exactly the PairCache swap rule.
+  // transfer, which negates every value when i and j swap: PairHistory's swap rule.
   no_virial_fdotr_compute = 1;
   centroidstressflag = CENTROID_NOTAVAIL;
   finitecutflag = 1;
@@ -228,26 +228,28 @@ void PairGranularEllipsoid::init_style()
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
   respa_run = utils::strmatch(update->integrate_style, "^respa");
 
-  bool any_history = false;
+  // every pair's row holds the history of the law that keeps the most
+  int law_history = 0;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       ForceLaw law;
       std::string refusal;
-      any_history |= law_of_pair(i, j, law, refusal) && law.history_size() > 0;
+      if (law_of_pair(i, j, law, refusal)) law_history = MAX(law_history, law.history_size());
     }
-  size_history = PairCache::size(any_history);
-  pipeline.tangential_slots = any_history;
+  size_history = PairHistory::size(law_history);
+  pipeline.law_slots = law_history;
   // the history fix reads its restart values with its own size: a different size would
   // misread every pair
   const bool restart_layout_differs =
-      restart_history_size > 0 && restart_history_layout != PairCache::LAYOUT_VERSION;
+      restart_history_size > 0 && restart_history_layout != PairHistory::LAYOUT_VERSION;
   if (!fix_history && restart_layout_differs)
     error->all(FLERR,
                "Pair granular/ellipsoid: the restart file holds {} history values per pair, a "
                "layout of another version of ELLIPSOID_DEP (this one keeps {} or {}, layout "
                "{}); continue from write_data/read_data (which starts every contact afresh)",
-               restart_history_size, PairCache::size(false), PairCache::size(true),
-               PairCache::LAYOUT_VERSION);
+               restart_history_size, PairHistory::size(0),
+               PairHistory::size(ForceLaw::MAX_HISTORY_SIZE),
+               PairHistory::LAYOUT_VERSION);
   if (!fix_history && restart_history_size > 0 && restart_history_size != size_history)
     error->all(FLERR,
                "Pair granular/ellipsoid: the restart file holds {} history values per pair, "

@@ -64,12 +64,12 @@ class PairGranularEllipsoid : public Pair {
   class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
   std::string history_id;    // fix_history's ID, which names its size (history_fix_id())
-  int size_history;       // EllipsoidDep::PairCache::size(any law keeps a tangential history)
+  int size_history;       // EllipsoidDep::PairHistory::size(the largest history of the laws)
   bool history_update;    // false: look at the stored history without advancing it
   int freeze_group_bit;
 
   ContactList contacts;
-  // the history doubles of neighbour jj of i (PairCache layout)
+  // the history doubles of neighbour jj of i (PairHistory layout)
   double *pair_history(int i, int jj) const;
 
   // per-atom state of owned + ghost atoms, rebuilt each force evaluation for the atoms of the
@@ -96,13 +96,13 @@ class PairGranularEllipsoid : public Pair {
   void allocate();
   int add_law(const EllipsoidDep::ForceLaw &law);
 
-  // per-pair history layout (PairCache::LAYOUT_VERSION; 0 for layouts 1 and 2, whose files
+  // per-pair history layout (PairHistory::LAYOUT_VERSION; 0 for layouts 1 and 2, whose files
   // hold the bare size) and size of the run that wrote the restart file this pair was read
   // from (size 0: none read, or no history written); one int in the file, history_record()
   static constexpr int HISTORY_RECORD_BASE = 100;
   static int history_record(int size)
   {
-    return EllipsoidDep::PairCache::LAYOUT_VERSION * HISTORY_RECORD_BASE + size;
+    return EllipsoidDep::PairHistory::LAYOUT_VERSION * HISTORY_RECORD_BASE + size;
   }
   int restart_history_layout, restart_history_size;
   double impact_velocity;    // pair_style impact_velocity; 0: twice the largest atom speed

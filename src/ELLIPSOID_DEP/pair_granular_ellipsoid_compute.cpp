@@ -69,9 +69,9 @@ ContactForce PairGranularEllipsoid::pair_force(int i, int j, int law, double *hi
                      atom->mask[j] & freeze_group_bit);
   // setup and single() look at the stored history without advancing it (dt = 0, on a copy),
   // as pair granular does, so a restart reproduces the forces it was written with
-  const TangentialHistory tangential(
-      force_law.history_size() > 0 ? PairCache(history).tangential() : nullptr, history_update);
-  return force_law.compute(geometry, motion, history_update ? update->dt : 0.0, tangential.get());
+  const LawHistory law_history(PairHistory(history).law(), force_law.history_size(),
+                               history_update);
+  return force_law.compute(geometry, motion, history_update ? update->dt : 0.0, law_history.get());
 }
 
 /* ---------------------------------------------------------------------- */
@@ -92,8 +92,8 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   if (neighbor->ago == 0)
     EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid",
                                         atom->nlocal + atom->nghost);
-  const bool tangential_slots = size_history > PairCache::PIPELINE_SIZE;
-  const bool refresh = candidates.refresh(lmp, list, fix_history, size_history, tangential_slots,
+  const int law_slots = pipeline.law_slots;
+  const bool refresh = candidates.refresh(lmp, list, fix_history, size_history, law_slots,
                                           respa_run, counters);
   update_states();
   const bool record = contacts.recording();
@@ -130,15 +130,15 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
                                stride, state, NEIGHMASK);
       // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
       const BoundingTest bounds = bounding_test(state[i].shape, state[j].shape);
-      if (forget_if_apart(bounds, history, touch[jj], tangential_slots, counters)) continue;
+      if (forget_if_apart(bounds, history, touch[jj], law_slots, counters)) continue;
 
       const ContactGeometry geometry =
           evaluate_near_pair(state[i].shape, state[j].shape, bounds, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
-      PairCache cache(history);
-      touch[jj] = cache.in_use() ? 1 : 0;
+      PairHistory row(history);
+      touch[jj] = row.in_use() ? 1 : 0;
       if (!in_contact(geometry)) {
-        if (tangential_slots) cache.clear_tangential();
+        row.clear_law<ForceLaw::MAX_HISTORY_SIZE>(law_slots);
         continue;
       }
 

@@ -1,8 +1,8 @@
 /* ----------------------------------------------------------------------
    ELLIPSOID_DEP: pair_style granular/ellipsoid, its restart records (see
-   doc/pair_granular_ellipsoid.rst): the solver settings, the force laws as their tables pack
-   them, the type-pair assignment and the history layout and size of the run that wrote the
-   file (one int, history_record(): files of layouts 1 and 2 hold the bare size).
+   doc/pair_granular_ellipsoid.rst): the solver settings, the force laws as their models'
+   rows pack them, the type-pair assignment and the history layout and size of the run that
+   wrote the file (one int, history_record(): files of layouts 1 and 2 hold the bare size).
 ------------------------------------------------------------------------- */
 
 #include "pair_granular_ellipsoid.h"
@@ -51,8 +51,8 @@ void PairGranularEllipsoid::read_restart_settings(FILE *fp)
 }
 
 /* ----------------------------------------------------------------------
-   the laws as their tables lay them out (pack_law), after the record size so that a file
-   of another layout is refused, then the per-pair history size of the run that wrote it
+   the laws as their models' rows lay them out (pack_law), after the record size so that a
+   file of another layout is refused, then the per-pair history size of the run that wrote it
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::write_restart(FILE *fp)

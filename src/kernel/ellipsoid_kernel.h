@@ -8,7 +8,7 @@
      ellipsoid_plane_contact.h  ellipsoid against a flat wall
      ellipsoid_wall_contact.h   ellipsoid against a wall of any supported shape (dispatch)
      ellipsoid_pipeline.h       the per-pair pipeline, its settings and counters
-     ellipsoid_pair_cache.h     the per-pair history layout (PairCache)
+     ellipsoid_pair_history.h   the per-pair history layout (PairHistory)
    ellipsoid_gap.h (the gap function and its minimiser) is internal to the contact and Wang
    queries.
 ------------------------------------------------------------------------- */
@@ -17,7 +17,7 @@
 #define ELLIPSOID_DEP_ELLIPSOID_KERNEL_H
 
 #include "ellipsoid_contact.h"
-#include "ellipsoid_pair_cache.h"
+#include "ellipsoid_pair_history.h"
 #include "ellipsoid_pipeline.h"
 #include "ellipsoid_plane_contact.h"
 #include "ellipsoid_shape.h"

@@ -4,7 +4,7 @@
 
 #include "ellipsoid_pipeline.h"
 
-#include "ellipsoid_pair_cache.h"
+#include "ellipsoid_pair_history.h"
 #include "ellipsoid_wang.h"
 
 namespace EllipsoidDep {
@@ -48,20 +48,20 @@ ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
   // one named result below, returned on every path after it) instead of copied there.
   // Non-finite input falls through to the validity check.
   ++counters.pairs;
-  PairCache history(cache);
-  PairCache::State state = history.state();
+  PairHistory history(cache);
+  PairHistory::State state = history.state();
   // a contact row of another pair or image (IDs renumbered, two images of one partner) is
   // not this pair's: it is forgotten and the pair evaluated as new. A plane needs no such
   // check: it is tested, and a plane that separates proves it whatever pair it was made for.
-  if (state == PairCache::State::Contact &&
-      !history.belongs_to(dc, PairCache::identity_tolerance(a, b))) {
+  if (state == PairHistory::State::Contact &&
+      !history.belongs_to(dc, PairHistory::identity_tolerance(a, b))) {
     ++counters.foreign_histories;
-    history.clear_row(settings.tangential_slots);
-    state = PairCache::State::Empty;
+    history.clear_row(settings.law_slots);
+    state = PairHistory::State::Empty;
   }
   Vec3 cached_n;
   const bool have_n = history.usable_normal(cached_n);
-  if (state == PairCache::State::Plane && have_n && settings.use_planes) {
+  if (state == PairHistory::State::Plane && have_n && settings.use_planes) {
     // any NaN or an infinite n.dc makes the test false, so invalid input cannot hit here
     if (history.plane_separates(a, b, dc)) {
       ++counters.plane_hits;
@@ -78,7 +78,7 @@ ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
   // from its own last normal moved on by its last step: the sign of min d(n) decides
   // separation exactly, and the continuing contact keeps its basin. The Wang test screens
   // pairs that newly come close.
-  const bool continuing_contact = state == PairCache::State::Contact && have_n;
+  const bool continuing_contact = state == PairHistory::State::Contact && have_n;
   if (continuing_contact) ++counters.continued;
   const Vec3 start_n = continuing_contact ? history.predicted_normal(cached_n) : cached_n;
   if (settings.use_wang && !continuing_contact) {

@@ -1,23 +1,24 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP kernel: the per-pair pipeline of the paper (Fig. 2) for callers that keep a
-   small per-pair cache between steps (PairCache): bounding spheres -> cached separating plane
-   -> Wang test (disjoint: build and cache a plane) -> contact iteration warm-started from the
-   cached normal extrapolated by its last step -> normal correction. Its settings and the counters of what it did.
+   small per-pair history between steps (PairHistory): bounding spheres -> cached separating
+   plane -> Wang test (disjoint: build and cache a plane) -> contact iteration warm-started
+   from the cached normal extrapolated by its last step -> normal correction. Its settings
+   and the counters of what it did.
 
    Conventions
-   - A is the first body, B the second; the cache belongs to the ordered pair (A, B) (see
-     ellipsoid_pair_cache.h for the layout and the swap rule).
+   - A is the first body, B the second; the history belongs to the ordered pair (A, B) (see
+     ellipsoid_pair_history.h for the layout and the swap rule).
    - Every evaluation ends in exactly one of: bounding reject, plane hit, Wang test (or the
      iteration directly when use_wang is off), continued contact.
    - A contact history is used only by the pair and periodic image it was made for
-     (PairCache::belongs_to); another pair's row is cleared, tangential slots included, and
-     counted (foreign_histories): the pair is then evaluated as new.
+     (PairHistory::belongs_to); another pair's row is cleared, the force law's slots
+     included, and counted (foreign_histories): the pair is then evaluated as new.
    - A warm-started result deeper than CHECKED_OVERLAP_FRACTION of the smaller smallest
      semi-axis is evaluated again from the cold start; the shallower of the two minima of d
      is the result (the replacement counted, spurious_minima).
 
    Degenerate cases
-   - Invalid bodies or a non-finite centre distance: Degenerate, counted, cache cleared.
+   - Invalid bodies or a non-finite centre distance: Degenerate, counted, history cleared.
      Non-finite input never hits the bounding or the plane shortcut (NaN compares false).
 ------------------------------------------------------------------------- */
 
@@ -25,7 +26,7 @@
 #define ELLIPSOID_DEP_ELLIPSOID_PIPELINE_H
 
 #include "ellipsoid_contact.h"
-#include "ellipsoid_pair_cache.h"
+#include "ellipsoid_pair_history.h"
 
 namespace EllipsoidDep {
 
@@ -33,8 +34,8 @@ struct PipelineSettings {
   ContactSettings contact;
   bool use_planes = true;    // cache separating planes of disjoint pairs
   bool use_wang = true;      // false: go straight to the contact iteration
-  bool tangential_slots = false;    // the history rows hold the force law's tangential
-                                    // slots after the pipeline's (cleared with a foreign row)
+  int law_slots = 0;         // the force law's slots after the pipeline's in each history row
+                             // (PairHistory::LAW; cleared with a foreign row)
 };
 
 // A warm-started result deeper than this fraction of the smaller body's smallest semi-axis
@@ -116,18 +117,19 @@ inline BoundingTest bounding_test(const Ellipsoid &a, const Ellipsoid &b)
   return bounding_test(a.center, a.bounding_radius, b.center, b.bounding_radius);
 }
 
-// What an evaluation does with a pair whose bounding spheres are apart (cache cleared,
+// What an evaluation does with a pair whose bounding spheres are apart (history cleared,
 // counted), for callers that test first and skip the call; true when the pair was apart.
 inline bool reject_apart(const BoundingTest &t, double *cache, PipelineCounters &counters)
 {
   if (!t.apart) return false;
   ++counters.pairs;
   ++counters.bounding_rejects;
-  PairCache(cache).clear();
+  PairHistory(cache).clear();
   return true;
 }
 
-// Evaluates one pair; updates the cache (PairCache::PIPELINE_SIZE doubles) and the counters.
+// Evaluates one pair; updates its history (the PairHistory::PIPELINE_SIZE doubles of the
+// pipeline; the law's only when the row is another pair's) and the counters.
 // Returns Overlapping (or NotConverged, still with usable geometry) when there is a contact,
 // else Separated (or Degenerate).
 ContactGeometry evaluate_pair(const Ellipsoid &a, const Ellipsoid &b,

@@ -9,7 +9,8 @@
 
 namespace EllipsoidDepLiggghts {
 
-static_assert(CACHE_SIZE == EllipsoidDep::PairCache::PIPELINE_SIZE, "per-pair cache size mismatch");
+static_assert(HISTORY_SIZE == EllipsoidDep::PairHistory::PIPELINE_SIZE,
+              "per-pair history size mismatch");
 
 namespace {
   EllipsoidDep::PipelineCounters totals;
@@ -29,8 +30,8 @@ namespace {
 }    // namespace
 
 bool pair_contact(const double *xi, const double *qi, const double *shapei, const double *xj,
-                  const double *qj, const double *shapej, const Settings &settings, double *cache,
-                  Contact &out)
+                  const double *qj, const double *shapej, const Settings &settings,
+                  double *history, Contact &out)
 {
   using namespace EllipsoidDep;
   PipelineSettings ps;
@@ -43,7 +44,7 @@ bool pair_contact(const double *xi, const double *qi, const double *shapei, cons
 
   const Ellipsoid a = make(xi, qi, shapei);
   const Ellipsoid b = make(xj, qj, shapej);
-  const ContactGeometry g = evaluate_pair(a, b, ps, cache, totals);
+  const ContactGeometry g = evaluate_pair(a, b, ps, history, totals);
 
   out.status = static_cast<int>(g.status);
   out.overlap = g.overlap;
@@ -63,24 +64,23 @@ double gaussian_radius(const double *x, const double *q, const double *shape, co
   return EllipsoidDep::gaussian_radius(e, EllipsoidDep::Vec3(n[0], n[1], n[2]).normalized());
 }
 
-const char *cache_slot_name(int k)
+const char *history_slot_name(int k)
 {
-  using EllipsoidDep::PairCache;
-  static const char *const names[CACHE_SIZE] = {"ellipsoid_dep_state", "ellipsoid_dep_nx",
-                                                "ellipsoid_dep_ny", "ellipsoid_dep_nz",
-                                                "ellipsoid_dep_u_or_stepx", "ellipsoid_dep_stepy",
-                                                "ellipsoid_dep_stepz", "ellipsoid_dep_dcx",
-                                                "ellipsoid_dep_dcy", "ellipsoid_dep_dcz"};
-  static_assert(PairCache::STATE == 0 && PairCache::NORMAL == 1 && PairCache::PLANE_U == 4 &&
-                    PairCache::NORMAL_STEP == 4 && PairCache::SEPARATION == 7 &&
-                    PairCache::PIPELINE_SIZE == 10,
-                "slot names follow the PairCache layout");
+  using EllipsoidDep::PairHistory;
+  static const char *const names[HISTORY_SIZE] = {"ellipsoid_dep_state", "ellipsoid_dep_nx",
+                                                  "ellipsoid_dep_ny", "ellipsoid_dep_nz",
+                                                  "ellipsoid_dep_u_or_stepx", "ellipsoid_dep_stepy",
+                                                  "ellipsoid_dep_stepz", "ellipsoid_dep_dcx",
+                                                  "ellipsoid_dep_dcy", "ellipsoid_dep_dcz"};
+  static_assert(PairHistory::STATE == 0 && PairHistory::NORMAL == 1 && PairHistory::PLANE_U == 4 &&
+                    PairHistory::NORMAL_STEP == 4 && PairHistory::SEPARATION == 7,
+                "slot names follow the PairHistory layout");
   return names[k];
 }
 
-bool cache_in_use(double *cache)
+bool history_in_use(double *history)
 {
-  return EllipsoidDep::PairCache(cache).in_use();
+  return EllipsoidDep::PairHistory(history).in_use();
 }
 
 int counter_count()

@@ -13,14 +13,14 @@
 
 namespace EllipsoidDepLiggghts {
 
-// doubles of per-pair cache (== EllipsoidDep::PairCache::PIPELINE_SIZE, checked in the .cpp).
-// Every entry changes sign when i and j are swapped: LIGGGHTS's history "newtonflag 1" is exact
-// for all.
-const int CACHE_SIZE = 10;
-// name of cache slot k < CACHE_SIZE (for LIGGGHTS's history registry)
-const char *cache_slot_name(int k);
-// true while the cache keeps a separating plane or a contact normal (keep the pair's history)
-bool cache_in_use(double *cache);
+// doubles of the kernel's per-pair history (its pipeline's slots: LIGGGHTS's own models keep
+// theirs), checked against EllipsoidDep::PairHistory::PIPELINE_SIZE in the .cpp. Its swap rule
+// is LIGGGHTS's history "newtonflag 1" (PairHistory::swapped).
+const int HISTORY_SIZE = 10;
+// name of history slot k < HISTORY_SIZE (for LIGGGHTS's history registry)
+const char *history_slot_name(int k);
+// true while the history keeps a separating plane or a contact normal (keep the pair's history)
+bool history_in_use(double *history);
 
 // kernel knobs (EllipsoidDep::PipelineSettings)
 struct Settings {
@@ -42,11 +42,11 @@ struct Contact {
 };
 
 // One pair. x: centre, q: unit quaternion (w, x, y, z) body -> box, shape: semi-axes along the
-// body axes (LIGGGHTS's superquadric `shape`). cache: CACHE_SIZE doubles kept per pair.
+// body axes (LIGGGHTS's superquadric `shape`). history: HISTORY_SIZE doubles kept per pair.
 // Returns true when the bodies overlap (out holds the geometry).
 bool pair_contact(const double *xi, const double *qi, const double *shapei, const double *xj,
-                  const double *qj, const double *shapej, const Settings &settings, double *cache,
-                  Contact &out);
+                  const double *qj, const double *shapej, const Settings &settings,
+                  double *history, Contact &out);
 
 // Gaussian-curvature radius sqrt(R1 R2) of the ellipsoid where its outer unit normal is n.
 double gaussian_radius(const double *x, const double *q, const double *shape, const double *n);

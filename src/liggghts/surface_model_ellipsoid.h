@@ -9,9 +9,9 @@
    the kernel's ContactGeometry back into SurfacesIntersectData (en, deltan, contact_point,
    reff), which LIGGGHTS's normal / tangential / rolling / cohesion models then consume.
 
-   Per-pair cache: the kernel's PairCache::PIPELINE_SIZE (10) doubles live in LIGGGHTS's contact history
-   (newtonflag 1: every entry changes sign under i <-> j). The pair keeps the
-   CONTACT_SURFACE_MODEL contact flag while the cache holds something, so a cached separating
+   Per-pair history: the kernel's PairHistory (its pipeline's slots) lives in LIGGGHTS's
+   contact history (newtonflag 1, PairHistory's swap rule). The pair keeps the
+   CONTACT_SURFACE_MODEL contact flag while the history holds something, so a cached separating
    plane survives re-neighbouring (fix contacthistory keeps only flagged pairs).
 
    Walls (fix wall/gran ... surface ellipsoid): LIGGGHTS's superquadric wall code computes the
@@ -57,7 +57,7 @@ namespace ContactModels
   template<>
   class SurfaceModel<SURFACE_ELLIPSOID> : public SurfaceModelBase
   {
-    int cache_offset;
+    int history_offset;
     EllipsoidDepLiggghts::Settings kernel;
     double tolerance_setting;
     double iterations_setting;
@@ -93,11 +93,11 @@ namespace ContactModels
     {
       if (!atom->superquadric_flag)
         error->one(FLERR, "surface ellipsoid needs atom_style superquadric");
-      // the kernel's per-pair cache (PairCache): every slot odd under i <-> j ("1")
-      cache_offset = hsetup->add_history_value(EllipsoidDepLiggghts::cache_slot_name(0), "1");
-      for (int k = 1; k < EllipsoidDepLiggghts::CACHE_SIZE; k++)
-        hsetup->add_history_value(EllipsoidDepLiggghts::cache_slot_name(k), "1");
-      if (cmb) cmb->add_history_offset("ellipsoid_dep_cache_offset", cache_offset);
+      // the kernel's per-pair history (PairHistory): every slot odd under i <-> j ("1")
+      history_offset = hsetup->add_history_value(EllipsoidDepLiggghts::history_slot_name(0), "1");
+      for (int k = 1; k < EllipsoidDepLiggghts::HISTORY_SIZE; k++)
+        hsetup->add_history_value(EllipsoidDepLiggghts::history_slot_name(k), "1");
+      if (cmb) cmb->add_history_offset("ellipsoid_dep_history_offset", history_offset);
     }
 
     inline void registerSettings(Settings& settings)
@@ -136,20 +136,21 @@ namespace ContactModels
       check_ellipsoid(i);
       check_ellipsoid(j);
 
-      double scratch[EllipsoidDepLiggghts::CACHE_SIZE] = {};
-      double *const cache = sidata.contact_history ? &sidata.contact_history[cache_offset] : scratch;
+      double scratch[EllipsoidDepLiggghts::HISTORY_SIZE] = {};
+      double *const history =
+          sidata.contact_history ? &sidata.contact_history[history_offset] : scratch;
 
       EllipsoidDepLiggghts::Contact c;
       const bool touching = EllipsoidDepLiggghts::pair_contact(
           atom->x[i], atom->quaternion[i], atom->shape[i],
-          atom->x[j], atom->quaternion[j], atom->shape[j], kernel, cache, c);
+          atom->x[j], atom->quaternion[j], atom->shape[j], kernel, history, c);
       if (c.status == 4)
         fail("surface ellipsoid: degenerate particle data (non-finite position, quaternion or "
              "shape)");
 
       // keep the history (cached plane or normal) across re-neighbouring while it holds something
       if (sidata.contact_flags) {
-        if (EllipsoidDepLiggghts::cache_in_use(cache)) *sidata.contact_flags |= CONTACT_SURFACE_MODEL;
+        if (EllipsoidDepLiggghts::history_in_use(history)) *sidata.contact_flags |= CONTACT_SURFACE_MODEL;
         else *sidata.contact_flags &= ~CONTACT_SURFACE_MODEL;
       }
       if (!touching) return false;

@@ -103,12 +103,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t nbytes)
   // pipeline twice, then the swapped pair with the swapped cache
   PipelineSettings ps;
   PipelineCounters cnt;
-  double cache[PairCache::PIPELINE_SIZE] = {};
+  double cache[PairHistory::PIPELINE_SIZE] = {};
   for (int k = 0; k < 2; ++k) check_geometry(evaluate_pair(a, b, ps, cache, cnt));
   for (double c : cache)
     if (!std::isfinite(c)) fail("cache nan");
-  double swapped[PairCache::PIPELINE_SIZE];
-  PairCache::swapped(cache, swapped, PairCache::PIPELINE_SIZE);
+  double swapped[PairHistory::PIPELINE_SIZE];
+  PairHistory::swapped(cache, swapped, PairHistory::PIPELINE_SIZE);
   check_geometry(evaluate_pair(b, a, ps, swapped, cnt));
 
   const Vec3 wn = Vec3(r.unit() - 0.5, r.unit() - 0.5, r.unit() - 0.5);

@@ -1,6 +1,7 @@
 // GoogleTest suite of the contact kernel, checked against the long-double oracle (oracle.h).
 #include "ellipsoid_kernel.h"
 #include "oracle.h"
+#include "tangential_history.h"
 
 #include <gtest/gtest.h>
 
@@ -412,12 +413,12 @@ TEST(Pipeline, CachedPlaneAndSwap)
   for (const auto &c : cases) {
     SCOPED_TRACE(c.label);
     if ((c.b.center - c.a.center).norm() > c.a.bounding_radius + c.b.bounding_radius) continue;
-    double cache[PairCache::PIPELINE_SIZE] = {};
-    const PairCache history(cache);
+    double cache[PairHistory::PIPELINE_SIZE] = {};
+    const PairHistory history(cache);
     PipelineCounters cnt;
     auto g = evaluate_pair(c.a, c.b, ps, cache, cnt);
     ASSERT_EQ(g.status, Status::Separated);
-    ASSERT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
+    ASSERT_EQ(cache[PairHistory::STATE], static_cast<double>(PairHistory::State::Plane));
     EXPECT_EQ(cnt.wang_calls, 1);
     // the stored plane, rebuilt from (n, u), separates
     const Vec3 dc = c.b.center - c.a.center;
@@ -430,9 +431,9 @@ TEST(Pipeline, CachedPlaneAndSwap)
     EXPECT_EQ(cnt.plane_hits, 1);
     EXPECT_EQ(cnt.wang_calls, 1);
     // swapped pair with the swapped cache (LAMMPS history transfer): the same plane
-    double sw[PairCache::PIPELINE_SIZE];
-    PairCache::swapped(cache, sw, PairCache::PIPELINE_SIZE);
-    const SeparatingPlane ps2 = PairCache(sw).plane(c.b.center, -dc);
+    double sw[PairHistory::PIPELINE_SIZE];
+    PairHistory::swapped(cache, sw, PairHistory::PIPELINE_SIZE);
+    const SeparatingPlane ps2 = PairHistory(sw).plane(c.b.center, -dc);
     EXPECT_NEAR(ps2.offset, -pl.offset, 1e-12 * (1 + std::fabs(pl.offset)));
     g = evaluate_pair(c.b, c.a, ps, sw, cnt);
     EXPECT_EQ(cnt.plane_hits, 2);
@@ -441,20 +442,20 @@ TEST(Pipeline, CachedPlaneAndSwap)
     EXPECT_FALSE(history.plane_separates(c.a, b2, b2.center - c.a.center));
     g = evaluate_pair(c.a, b2, ps, cache, cnt);
     EXPECT_EQ(g.status, Status::Overlapping);
-    EXPECT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Contact));
+    EXPECT_EQ(cache[PairHistory::STATE], static_cast<double>(PairHistory::State::Contact));
     EXPECT_EQ(cnt.contacts, 1);
     const auto ref = ellipsoid_contact(c.a, b2, ps.contact);
     EXPECT_LT((g.normal - ref.normal).norm(), 1e-9);
     // without Wang / planes: same contact
     PipelineSettings raw;
     raw.use_planes = raw.use_wang = false;
-    double c2[PairCache::PIPELINE_SIZE] = {};
+    double c2[PairHistory::PIPELINE_SIZE] = {};
     const auto g2 = evaluate_pair(c.a, b2, raw, c2, cnt);
     EXPECT_LT((g2.normal - ref.normal).norm(), 1e-9);
     // far apart: bounding reject clears the cache
     const Ellipsoid far = make_ellipsoid(c.a.center + Vec3(100, 0, 0), c.b.rotation, c.b.semi_axes);
     evaluate_pair(c.a, far, ps, cache, cnt);
-    EXPECT_EQ(cache[PairCache::STATE], 0.0);
+    EXPECT_EQ(cache[PairHistory::STATE], 0.0);
     EXPECT_EQ(cnt.bounding_rejects, 1);
   }
 }
@@ -493,20 +494,20 @@ TEST(Degenerate, NonFiniteAndZeroAxis)
             Status::Degenerate);
   PipelineSettings ps;
   PipelineCounters cnt;
-  double cache[PairCache::PIPELINE_SIZE];
-  PairCache(cache).store_contact(Vec3(0, 0, 1), Vec3(1, 0, 0));
+  double cache[PairHistory::PIPELINE_SIZE];
+  PairHistory(cache).store_contact(Vec3(0, 0, 1), Vec3(1, 0, 0));
   const auto g =
       evaluate_pair(a, make_ellipsoid(Vec3(NAN, 0, 0), q, Vec3(1, 2, 3)), ps, cache, cnt);
   EXPECT_EQ(g.status, Status::Degenerate);
   EXPECT_EQ(cnt.degenerate, 1);
-  EXPECT_EQ(cache[PairCache::STATE], 0.0);
+  EXPECT_EQ(cache[PairHistory::STATE], 0.0);
   // a centre at infinity along a cached plane's normal (n.dc = +inf passes both of the plane
   // test's comparisons) is degenerate too, not a plane hit
   const Ellipsoid thin = make_ellipsoid(Vec3(0, 0, 0), q, Vec3(0.5, 1, 1));
   auto sep = evaluate_pair(thin, make_ellipsoid(Vec3(1.8, 0, 0), q, Vec3(0.5, 1, 1)), ps, cache,
                            cnt);
   ASSERT_EQ(sep.status, Status::Separated);
-  ASSERT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
+  ASSERT_EQ(cache[PairHistory::STATE], static_cast<double>(PairHistory::State::Plane));
   sep = evaluate_pair(thin, make_ellipsoid(Vec3(INFINITY, 0, 0), q, Vec3(0.5, 1, 1)), ps, cache,
                       cnt);
   EXPECT_EQ(sep.status, Status::Degenerate);
@@ -517,19 +518,19 @@ TEST(Degenerate, NonFiniteAndZeroAxis)
 // A cached normal is used only when it is plausibly unit: 1/2 < |n| < 2, finite.
 TEST(Pipeline, UsableNormal)
 {
-  double cache[PairCache::PIPELINE_SIZE];
-  const PairCache history(cache);
+  double cache[PairHistory::PIPELINE_SIZE];
+  const PairHistory history(cache);
   Vec3 n;
   for (const Vec3 &stored : {Vec3(1, 0, 0), Vec3(0, 0.6, 0), Vec3(0, 0, 1.9)}) {
-    PairCache(cache).store_contact(stored, Vec3::Zero());
+    PairHistory(cache).store_contact(stored, Vec3::Zero());
     EXPECT_TRUE(history.usable_normal(n)) << stored.transpose();
   }
   for (const Vec3 &stored : {Vec3(0.4, 0, 0), Vec3(3, 0, 0), Vec3(1e200, 0, 0),
                              Vec3(INFINITY, 0, 0), Vec3(NAN, 0, 0), Vec3(1, NAN, 0)}) {
-    PairCache(cache).store_contact(stored, Vec3::Zero());
+    PairHistory(cache).store_contact(stored, Vec3::Zero());
     EXPECT_FALSE(history.usable_normal(n)) << stored.transpose();
   }
-  PairCache(cache).clear();
+  PairHistory(cache).clear();
   EXPECT_FALSE(history.usable_normal(n));
 }
 
@@ -547,7 +548,7 @@ TEST(Pipeline, PredictedStartOfAContinuingContact)
   for (const auto &c : cases) {
     if (c.a.sphere && c.b.sphere) continue;
     SCOPED_TRACE(c.label);
-    double cache[PairCache::PIPELINE_SIZE] = {}, plain[PairCache::PIPELINE_SIZE] = {};
+    double cache[PairHistory::PIPELINE_SIZE] = {}, plain[PairHistory::PIPELINE_SIZE] = {};
     PipelineCounters predicted_cnt, plain_cnt;
     const Vec3 pivot = ellipsoid_contact(c.a, c.b, ps.contact).point;
     const Vec3 axis = c.n.unitOrthogonal();
@@ -558,7 +559,7 @@ TEST(Pipeline, PredictedStartOfAContinuingContact)
       const Mat3 r = turn.toRotationMatrix();
       const Ellipsoid b =
           make_ellipsoid(pivot + r * (c.b.center - pivot), Mat3(r * c.b.rotation), c.b.semi_axes);
-      for (int s = 0; s < 3; ++s) plain[PairCache::NORMAL_STEP + s] = 0.0;
+      for (int s = 0; s < 3; ++s) plain[PairHistory::NORMAL_STEP + s] = 0.0;
       const ContactGeometry g = evaluate_pair(c.a, b, ps, cache, predicted_cnt);
       const ContactGeometry h = evaluate_pair(c.a, b, ps, plain, plain_cnt);
       stayed_in_contact = g.status == Status::Overlapping && h.status == Status::Overlapping;
@@ -566,18 +567,18 @@ TEST(Pipeline, PredictedStartOfAContinuingContact)
       const ContactGeometry ref = ellipsoid_contact(c.a, b, ps.contact);
       EXPECT_LT((g.normal - ref.normal).norm(), 1e-9);
       EXPECT_LT((h.normal - ref.normal).norm(), 1e-9);
-      const Vec3 step(cache[PairCache::NORMAL_STEP], cache[PairCache::NORMAL_STEP + 1],
-                      cache[PairCache::NORMAL_STEP + 2]);
+      const Vec3 step(cache[PairHistory::NORMAL_STEP], cache[PairHistory::NORMAL_STEP + 1],
+                      cache[PairHistory::NORMAL_STEP + 2]);
       EXPECT_EQ(step, k == 0 ? Vec3::Zero() : Vec3(g.normal - previous));
       previous = g.normal;
     }
     if (!stayed_in_contact) continue;
-    double swapped[PairCache::PIPELINE_SIZE];
-    PairCache::swapped(cache, swapped, PairCache::PIPELINE_SIZE);
+    double swapped[PairHistory::PIPELINE_SIZE];
+    PairHistory::swapped(cache, swapped, PairHistory::PIPELINE_SIZE);
     Vec3 n, ns;
-    ASSERT_TRUE(PairCache(cache).usable_normal(n));
-    ASSERT_TRUE(PairCache(swapped).usable_normal(ns));
-    EXPECT_EQ(PairCache(swapped).predicted_normal(ns), -PairCache(cache).predicted_normal(n));
+    ASSERT_TRUE(PairHistory(cache).usable_normal(n));
+    ASSERT_TRUE(PairHistory(swapped).usable_normal(ns));
+    EXPECT_EQ(PairHistory(swapped).predicted_normal(ns), -PairHistory(cache).predicted_normal(n));
     EXPECT_EQ(predicted_cnt.contacts, 40);
     EXPECT_EQ(predicted_cnt.continued, 39);
     predicted_total += predicted_cnt.iterations;
@@ -603,7 +604,7 @@ TEST(Pipeline, FastModeAcceptedStartStoresNoStep)
   for (const auto &c : cases) {
     if (c.a.sphere && c.b.sphere) continue;
     SCOPED_TRACE(c.label);
-    double cache[PairCache::PIPELINE_SIZE] = {};
+    double cache[PairHistory::PIPELINE_SIZE] = {};
     PipelineCounters cnt;
     const Vec3 pivot = ellipsoid_contact(c.a, c.b, fast.contact).point;
     const Vec3 axis = c.n.unitOrthogonal();
@@ -630,48 +631,48 @@ TEST(Pipeline, FastModeAcceptedStartStoresNoStep)
 // A step that is not that of a smooth motion is not extrapolated; a plane clears the slots.
 TEST(Pipeline, PredictedNormalGuards)
 {
-  double cache[PairCache::PIPELINE_SIZE] = {};
-  const PairCache history(cache);
+  double cache[PairHistory::PIPELINE_SIZE] = {};
+  const PairHistory history(cache);
   const Vec3 n(0, 0, 1);
   const Vec3 dc(0, 0, 1);
-  PairCache(cache).store_contact(n, dc, Vec3(0.01, 0, 0));
+  PairHistory(cache).store_contact(n, dc, Vec3(0.01, 0, 0));
   EXPECT_EQ(history.predicted_normal(n), Vec3(0.01, 0, 1));
-  PairCache(cache).store_contact(n, dc, Vec3(0.06, 0, 0));
+  PairHistory(cache).store_contact(n, dc, Vec3(0.06, 0, 0));
   EXPECT_EQ(history.predicted_normal(n), n);
-  PairCache(cache).store_contact(n, dc, Vec3(NAN, 0, 0));
+  PairHistory(cache).store_contact(n, dc, Vec3(NAN, 0, 0));
   EXPECT_EQ(history.predicted_normal(n), n);
-  PairCache(cache).store_contact(n, dc, Vec3(0, INFINITY, 0));
+  PairHistory(cache).store_contact(n, dc, Vec3(0, INFINITY, 0));
   EXPECT_EQ(history.predicted_normal(n), n);
-  PairCache(cache).store_contact(n, dc, Vec3(0.01, 0.02, 0.03));
-  PairCache(cache).store_plane(n, 1.0, Vec3::Zero(), Vec3(0, 0, 4));
-  EXPECT_EQ(cache[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
-  EXPECT_DOUBLE_EQ(cache[PairCache::PLANE_U], -0.25);
-  EXPECT_EQ(cache[PairCache::PLANE_U + 1], 0.0);
-  EXPECT_EQ(cache[PairCache::PLANE_U + 2], 0.0);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(cache[PairCache::SEPARATION + k], 0.0);
+  PairHistory(cache).store_contact(n, dc, Vec3(0.01, 0.02, 0.03));
+  PairHistory(cache).store_plane(n, 1.0, Vec3::Zero(), Vec3(0, 0, 4));
+  EXPECT_EQ(cache[PairHistory::STATE], static_cast<double>(PairHistory::State::Plane));
+  EXPECT_DOUBLE_EQ(cache[PairHistory::PLANE_U], -0.25);
+  EXPECT_EQ(cache[PairHistory::PLANE_U + 1], 0.0);
+  EXPECT_EQ(cache[PairHistory::PLANE_U + 2], 0.0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(cache[PairHistory::SEPARATION + k], 0.0);
 }
 
 // A contact row belongs to the centres' separation it was stored at, to within half the
 // smallest semi-axis; the swapped row to the negated separation; NaN belongs nowhere.
 TEST(Pipeline, ContactRowBelongsToItsSeparation)
 {
-  double cache[PairCache::PIPELINE_SIZE] = {}, swapped[PairCache::PIPELINE_SIZE];
-  const PairCache history(cache);
+  double cache[PairHistory::PIPELINE_SIZE] = {}, swapped[PairHistory::PIPELINE_SIZE];
+  const PairHistory history(cache);
   const double q[4] = {1, 0, 0, 0};
   const Ellipsoid a = make_ellipsoid(Vec3::Zero(), q, Vec3(2, 0.5, 0.3));
   const Ellipsoid b = make_ellipsoid(Vec3(0, 0.7, 0), q, Vec3(1, 0.4, 0.6));
-  const double tol = PairCache::identity_tolerance(a, b);
+  const double tol = PairHistory::identity_tolerance(a, b);
   EXPECT_DOUBLE_EQ(tol, 0.15);
   const Vec3 dc(0.3, 0.7, 0.1);
-  PairCache(cache).store_contact(Vec3(0, 1, 0), dc);
+  PairHistory(cache).store_contact(Vec3(0, 1, 0), dc);
   EXPECT_TRUE(history.belongs_to(dc, tol));
   EXPECT_TRUE(history.belongs_to(dc + Vec3(0, 0, 0.99 * tol), tol));
   EXPECT_FALSE(history.belongs_to(dc + Vec3(0, 0, 1.01 * tol), tol));
   EXPECT_FALSE(history.belongs_to(-dc, tol));
   EXPECT_FALSE(history.belongs_to(Vec3(NAN, 0.7, 0.1), tol));
-  PairCache::swapped(cache, swapped, PairCache::PIPELINE_SIZE);
-  EXPECT_TRUE(PairCache(swapped).belongs_to(-dc, tol));
-  EXPECT_FALSE(PairCache(swapped).belongs_to(dc, tol));
+  PairHistory::swapped(cache, swapped, PairHistory::PIPELINE_SIZE);
+  EXPECT_TRUE(PairHistory(swapped).belongs_to(-dc, tol));
+  EXPECT_FALSE(PairHistory(swapped).belongs_to(dc, tol));
 }
 
 // Two periodic images of one partner, B and B' = B + L x (a box of width L = 2.5 under
@@ -687,17 +688,17 @@ TEST(Pipeline, ForeignRowOfAnotherImageIsCleared)
   const Ellipsoid b = make_ellipsoid(Vec3(-0.5, 0.8, 0.1), q, needle);
   const Ellipsoid b_image = make_ellipsoid(b.center + Vec3(2.5, 0, 0), q, needle);
   PipelineSettings ps;
-  ps.tangential_slots = true;
-  constexpr int ROW = PairCache::size(true);
+  ps.law_slots = HistoryTangential::HISTORY_SIZE;
+  constexpr int ROW = PairHistory::size(HistoryTangential::HISTORY_SIZE);
   double row[ROW] = {}, fresh[ROW] = {};
   PipelineCounters cnt, fresh_cnt;
   ASSERT_TRUE(in_contact(evaluate_pair(a, b, ps, row, cnt)));
-  for (int k = 0; k < PairCache::TANGENTIAL_SIZE; ++k) row[PairCache::TANGENTIAL + k] = 0.1;
+  for (int k = 0; k < ps.law_slots; ++k) row[PairHistory::LAW + k] = 0.1;
   // the same pair one evaluation later keeps its row
   ASSERT_TRUE(in_contact(evaluate_pair(a, b, ps, row, cnt)));
   EXPECT_EQ(cnt.continued, 1);
   EXPECT_EQ(cnt.foreign_histories, 0);
-  EXPECT_EQ(row[PairCache::TANGENTIAL], 0.1);
+  EXPECT_EQ(row[PairHistory::LAW], 0.1);
 
   const ContactGeometry g = evaluate_pair(a, b_image, ps, row, cnt);
   const ContactGeometry ref = evaluate_pair(a, b_image, ps, fresh, fresh_cnt);
@@ -749,14 +750,14 @@ TEST(Pipeline, SpuriousDeepMinimumOfAWarmStartIsReplaced)
     SCOPED_TRACE(sc.contact_row ? "disjoint, contact row" : "touching, plane row");
     ASSERT_GT(ellipsoid_contact(a, b, ps.contact, &start).overlap, 1.5);
     const ContactGeometry cold = ellipsoid_contact(a, b, ps.contact);
-    double row[PairCache::PIPELINE_SIZE] = {};
+    double row[PairHistory::PIPELINE_SIZE] = {};
     if (sc.contact_row) {
-      PairCache(row).store_contact(start, dc);
+      PairHistory(row).store_contact(start, dc);
     } else {
       // a plane with n.dc < 0 (which store_plane refuses) arrives only as another image's row
       ASSERT_LT(start.dot(dc), 0.0);
-      row[PairCache::STATE] = static_cast<double>(PairCache::State::Plane);
-      for (int k = 0; k < 3; ++k) row[PairCache::NORMAL + k] = start[k];
+      row[PairHistory::STATE] = static_cast<double>(PairHistory::State::Plane);
+      for (int k = 0; k < 3; ++k) row[PairHistory::NORMAL + k] = start[k];
     }
     PipelineCounters cnt;
     const ContactGeometry g = evaluate_pair(a, b, ps, row, cnt);
@@ -767,13 +768,13 @@ TEST(Pipeline, SpuriousDeepMinimumOfAWarmStartIsReplaced)
       ASSERT_LT(cold.overlap, -0.1);
       EXPECT_FALSE(in_contact(g));
       EXPECT_EQ(cnt.contacts, 0);
-      EXPECT_EQ(row[PairCache::STATE], static_cast<double>(PairCache::State::Plane));
+      EXPECT_EQ(row[PairHistory::STATE], static_cast<double>(PairHistory::State::Plane));
     } else {
       ASSERT_GT(cold.overlap, 0.0);
       ASSERT_LT(cold.overlap, 0.01);
       EXPECT_TRUE(in_contact(g));
-      EXPECT_EQ(row[PairCache::STATE], static_cast<double>(PairCache::State::Contact));
-      for (int k = 0; k < 3; ++k) EXPECT_EQ(row[PairCache::NORMAL_STEP + k], 0.0);
+      EXPECT_EQ(row[PairHistory::STATE], static_cast<double>(PairHistory::State::Contact));
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(row[PairHistory::NORMAL_STEP + k], 0.0);
     }
   }
 }

@@ -72,14 +72,14 @@ def test_tiny_study_through_snakemake(tmp_path):
     config["sets"]["spheroids"]["seeds"] = [1, 2]
     (tmp_path / "more.yaml").write_text(yaml.safe_dump(config))
     text = run(snakemake(tmp_path, "-n", config=tmp_path / "more.yaml"), str(tmp_path), 120)
-    assert job_counts(text) == {"deposit": 2, "table": 1, "figures": 1, "pores": 2,
-                                "pores_figure": 1, "all": 1}, text
+    assert job_counts(text) == {"deposit": 2, "table": 1, "claims": 1, "figures": 1,
+                                "pores": 2, "pores_figure": 1, "all": 1}, text
     assert "seed=2" in text and "seed=1" not in text
     # a removed deposit is redone alone when the table is asked for again
     shutil.rmtree(res / "points" / "eta1.5_zeta1_dr0_N100_coulomb" / "s1")
     text = run(snakemake(tmp_path, "-n", "--forcerun", "table"), str(tmp_path), 120)
-    assert job_counts(text) == {"deposit": 1, "table": 1, "figures": 1, "pores": 1,
-                                "pores_figure": 1, "all": 1}, text
+    assert job_counts(text) == {"deposit": 1, "table": 1, "claims": 1, "figures": 1,
+                                "pores": 1, "pores_figure": 1, "all": 1}, text
     # ... and without --forcerun, as ./ellipsoid-dep study runs it (file age only): every
     # deposit is an input of `all`, so a missing one is made and the table follows
     text = run(snakemake(tmp_path, "-n", "--rerun-triggers", "mtime"), str(tmp_path), 120)
@@ -215,19 +215,34 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
 
 
 def test_figures_compare_tangential_laws(tmp_path):
-    """a table with two laws on the diagonal: plot_figures.py draws them against each other"""
+    """a study with two laws on the diagonal (the table, and two seeds per point in
+    deposits.csv with their histograms): plot_figures.py draws them against each other"""
     columns = ["point", "eta", "zeta", "delta_r", "N", "law", "seeds"] + [
         q + s for q in ("phi", "Z", "Z_no_rattlers") for s in ("_mean", "_sem")] + [
         "contact_histo", "orient_histo"]
-    (tmp_path / "histo.dat").write_text("".join("%g 0.08 0.001\n" % (0.1 + 0.2 * k)
-                                                for k in range(16)))
-    rows = [[law + str(v), v, v, dr, 3000, law, 2, 0.6 + 0.01 * v, 0.001, 6.0, 0.05, 6.0, 0.05,
-             "histo.dat", "histo.dat"]
-            for law in ("coulomb", "viscous") for v in (1.0, 1.4, 2.0) for dr in (0.0, 0.3)]
-    with open(tmp_path / "table.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(columns)
-        w.writerows(rows)
+    histo = "# histogram\n1000 16\n" + "".join("%d %g 0.08 0.001\n" % (k + 1, 0.1 + 0.2 * k)
+                                                for k in range(16))
+    rows, deposits = [], []
+    for law in ("coulomb", "viscous"):
+        for v in (1.0, 1.4, 2.0):
+            for dr in (0.0, 0.3):
+                point = "eta%g_zeta%g_dr%g_N3000_%s" % (v, v, dr, law)
+                rows.append([point, v, v, dr, 3000, law, 2, 0.6 + 0.01 * v, 0.001, 6.0, 0.05,
+                             6.0, 0.05, "histo.dat", "histo.dat"])
+                for seed, noise in ((1, 0.001), (2, -0.001)):
+                    folder = tmp_path / "points" / point / ("s%d" % seed)
+                    folder.mkdir(parents=True)
+                    for name in ("contact_histo.dat", "orient_histo.dat"):
+                        (folder / name).write_text(histo)
+                    deposits.append([point, v, v, dr, 3000, law, seed, 0.6 + 0.01 * v + noise,
+                                     6.0 + noise, 6.0 + noise])
+    for name, cols, data in (("table.csv", columns, rows), ("deposits.csv", [
+            "point", "eta", "zeta", "delta_r", "N", "law", "seed", "phi", "Z", "Z_no_rattlers"],
+            deposits)):
+        with open(tmp_path / name, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(cols)
+            w.writerows(data)
     out = run([PY, os.path.join(TOOLS, "plot_figures.py"), str(tmp_path / "table.csv")],
               str(tmp_path), 120)
     assert_image(str(tmp_path / "fig_density_laws.png"))

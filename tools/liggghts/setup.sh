@@ -9,8 +9,9 @@
 #   3. adapter + kernel sources synced into its src/ (copied only when changed, so an edit of
 #      the adapter or the kernel rebuilds only what depends on it)
 #   4. make ellipsoid_dep (2 parallel compiles by default, progress shown)
-#   5. $CACHE/liggghts-3.8.0-<key>/lmp_liggghts (the binary); $CACHE/liggghts-current points
-#      at that folder.
+#   5. the binary, copied to this checkout's build/lmp_liggghts (the tree is shared by every
+#      checkout on the machine: steps 3-5 hold a lock, and each checkout keeps the binary of
+#      its own kernel and adapter); $CACHE/liggghts-current points at the tree.
 # Environment: JOBS (parallel compiles, default nproc), XDG_CACHE_HOME.
 set -euo pipefail
 
@@ -32,7 +33,10 @@ as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 KEY="$(cat "$HERE"/patches/*.patch "$HERE/Makefile.ellipsoid_dep" | sha256sum | cut -c1-10)"
 BUILD="$CACHE/liggghts-$VERSION-$KEY"
 SRC="$BUILD/$TOPDIR/src"
-EXE="$BUILD/lmp_liggghts"
+# the LIGGGHTS tree in the cache is shared by every checkout on the machine; each checkout
+# builds it with its own kernel and adapter under a lock and keeps its own copy of the binary
+EXE="$ROOT/build/lmp_liggghts"
+LOCK="$CACHE/liggghts.lock"
 
 install_packages() {
   local missing=()
@@ -105,6 +109,11 @@ sync_adapter() {
   for f in "$ROOT"/src/kernel/*.h "$ROOT"/src/kernel/*.cpp; do
     sync_file "$f" "$SRC/$(basename "$f")"
   done
+  # a kernel file another checkout synced and this one does not have would be built in
+  for f in "$SRC"/ellipsoid_*; do
+    [ -e "$ROOT/src/kernel/$(basename "$f")" ] || [ -e "$ROOT/src/liggghts/$(basename "$f")" ] ||
+      { rm -f "$f" "$SRC/Obj_ellipsoid_dep/$(basename "${f%.*}").o"; say "  removed $(basename "$f")"; }
+  done
 }
 
 build() {
@@ -134,18 +143,36 @@ build() {
   set -o pipefail
   [ "$rc" = 0 ] && [ -x "$SRC/lmp_ellipsoid_dep" ] ||
     die "LIGGGHTS build failed (make exit $rc; log: $log)"
+  mkdir -p "$(dirname "$EXE")"
   if ! cmp -s "$SRC/lmp_ellipsoid_dep" "$EXE"; then cp "$SRC/lmp_ellipsoid_dep" "$EXE"; fi
   ln -sfn "$BUILD" "$CACHE/liggghts-current"
   say "built $EXE in $((SECONDS - start)) s"
 }
 
+# what this checkout's binary was built from: the tree's key and the synced sources
+sources_stamp() {
+  { echo "$KEY"; cat "$ROOT"/src/liggghts/* "$ROOT"/src/kernel/*.h "$ROOT"/src/kernel/*.cpp; } |
+    sha256sum | cut -c1-16
+}
+
 main() {
   install_packages
+  # the binary of these very sources exists: nothing to do (LIGGGHTS's make would still
+  # recompile its version stamp and relink, several seconds at every call)
+  local stamp
+  stamp="$(sources_stamp)"
+  if [ -x "$EXE" ] && [ "$(cat "$EXE.stamp" 2>/dev/null)" = "$stamp" ]; then
+    echo "$EXE"
+    return
+  fi
   download
+  # one checkout at a time in the shared tree (sync, make and the copy of the binary)
+  exec 9>"$LOCK"
+  flock 9
   extract_and_patch
   sync_adapter
-  # make decides what is out of date; a no-op build takes a few seconds
   build
+  echo "$stamp" >"$EXE.stamp"
   echo "$EXE"
 }
 

@@ -1,11 +1,8 @@
 /* ----------------------------------------------------------------------
-   ELLIPSOID_DEP: the parameter tables of the force-law sub-models, and everything that is
-   driven by them: parsing, validation, mixing of unlike types, the restart layout.
-
-   One row per parameter: the model that takes it, its word in messages, its field, its
-   allowed range and its mixing rule. Rows of one model are read in table order, and the
-   restart record holds every row of every table in table order. Adding a parameter is one
-   row here (and its use in ForceLaw::compute).
+   ELLIPSOID_DEP: everything the models' parameter rows drive (force_law_model.h): parsing,
+   validation, mixing of unlike types, the restart layout. A family is the variant of its
+   models (force_law_registry.h); its models are found by NAME, their parameters read,
+   checked, mixed and stored row by row. Adding a parameter is one row in its model's header.
 ------------------------------------------------------------------------- */
 
 #include "ellipsoid_force_law.h"
@@ -13,168 +10,143 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 
 namespace EllipsoidDep {
 
 namespace {
 
-  const double INF = std::numeric_limits<double>::infinity();
+  std::string range_text(const Range &range)
+  {
+    char buffer[64];
+    if (range.hi == INF)
+      std::snprintf(buffer, sizeof(buffer), "%s %g", range.lo_closed ? ">=" : ">", range.lo);
+    else
+      std::snprintf(buffer, sizeof(buffer), "in %c%g, %g%c", range.lo_closed ? '[' : '(', range.lo,
+                    range.hi, range.hi_closed ? ']' : ')');
+    return buffer;
+  }
 
-  struct Range {
-    double lo, hi;
-    bool lo_closed, hi_closed;
+  // f(std::integral_constant<std::size_t, I>) for every model I of a family, in list order
+  template <class Variant, class F, std::size_t... I>
+  void for_each_model(F &&f, std::index_sequence<I...>)
+  {
+    (f(std::integral_constant<std::size_t, I>{}), ...);
+  }
+  template <class Variant, class F> void for_each_model(F &&f)
+  {
+    for_each_model<Variant>(f, std::make_index_sequence<std::variant_size_v<Variant>>{});
+  }
+  template <class Variant, std::size_t I> using ModelAt = std::variant_alternative_t<I, Variant>;
 
-    bool contains(double x) const
-    {
-      return (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
-    }
-    std::string text() const
-    {
-      char buffer[64];
-      if (hi == INF)
-        std::snprintf(buffer, sizeof(buffer), "%s %g", lo_closed ? ">=" : ">", lo);
-      else
-        std::snprintf(buffer, sizeof(buffer), "in %c%g, %g%c", lo_closed ? '[' : '(', lo, hi,
-                      hi_closed ? ']' : ')');
-      return buffer;
-    }
-  };
-
-  const Range POSITIVE = {0.0, INF, false, false};
-  const Range NON_NEGATIVE = {0.0, INF, true, false};
-  const Range POISSON_RATIO = {-1.0, 0.5, false, false};
-  const Range RESTITUTION = {0.0, 1.0, false, true};
-  // rolling resistance mu_r: its torque arm mu_r R* cannot exceed the contact's radius R*
-  // (beyond, one step's torque spins a particle at rest past what its orientation survives)
-  const Range ROLLING_ARM = {0.0, 1.0, true, true};
-
-  enum class Mix {
-    Geometric,         // sqrt(a b)
-    Arithmetic,        // (a + b) / 2
-    ReducedModulus,    // Young's modulus: the like-material E with Hertz's E* at the mixed nu
-  };
-
-  template <class Model> struct Choice {
-    typename Model::Kind kind;
-    const char *name;
-  };
-
-  template <class Model> struct Row {
-    typename Model::Kind kind;    // the model that takes this parameter
-    const char *word;
-    double Model::*field;
-    Range range;
-    Mix mix;
-    double Model::*poisson = nullptr;    // ReducedModulus: the Poisson ratio it pairs with
-  };
-
-  using N = NormalModel;
-  using T = TangentialModel;
-  using R = RollingModel;
-
-  const Choice<N> NORMAL_CHOICES[] = {{N::Kind::Hertz, "hertz"},
-                                      {N::Kind::HertzMaterial, "hertz/material"}};
-  const Row<N> NORMAL_ROWS[] = {
-      {N::Kind::Hertz, "kn", &N::kn, POSITIVE, Mix::Geometric},
-      {N::Kind::Hertz, "K", &N::damping, NON_NEGATIVE, Mix::Geometric},
-      {N::Kind::HertzMaterial, "E", &N::youngs, POSITIVE, Mix::ReducedModulus, &N::poisson},
-      {N::Kind::HertzMaterial, "nu", &N::poisson, POISSON_RATIO, Mix::Arithmetic},
-      {N::Kind::HertzMaterial, "e", &N::restitution, RESTITUTION, Mix::Geometric},
-  };
-
-  const Choice<T> TANGENTIAL_CHOICES[] = {
-      {T::Kind::None, "none"}, {T::Kind::Viscous, "viscous"}, {T::Kind::History, "history"}};
-  const Row<T> TANGENTIAL_ROWS[] = {
-      {T::Kind::Viscous, "mu", &T::mu_viscous, NON_NEGATIVE, Mix::Geometric},
-      {T::Kind::History, "kt", &T::kt, POSITIVE, Mix::Geometric},
-      {T::Kind::History, "mu", &T::mu, NON_NEGATIVE, Mix::Geometric},
-  };
-
-  const Choice<R> ROLLING_CHOICES[] = {{R::Kind::None, "none"}, {R::Kind::Constant, "constant"}};
-  const Row<R> ROLLING_ROWS[] = {
-      {R::Kind::Constant, "mu_r", &R::mu_roll, ROLLING_ARM, Mix::Geometric},
-  };
-
-  // One sub-model's table with its keyword ("" for the normal model, which has none).
-  template <class Model, std::size_t NC, std::size_t NR> struct Table {
+  // One family with its keyword ("" for the normal model, which has none).
+  template <class Variant> struct Family {
     const char *keyword;
-    const Choice<Model> (&choices)[NC];
-    const Row<Model> (&rows)[NR];
+    static constexpr std::size_t COUNT = std::variant_size_v<Variant>;
 
-    const char *name(typename Model::Kind kind) const
+    const char *name(const Variant &v) const
     {
-      for (const auto &c : choices)
-        if (c.kind == kind) return c.name;
-      return "?";
+      return visit_model(v, [](const auto &model) {
+        return model.NAME;
+      });
     }
     // "hertz/material" or "tangential history": how messages name a model
-    std::string label(typename Model::Kind kind) const
+    std::string label(const Variant &v) const
     {
-      return *keyword ? std::string(keyword) + " " + name(kind) : std::string(name(kind));
+      return *keyword ? std::string(keyword) + " " + name(v) : std::string(name(v));
     }
+    std::string what() const { return *keyword ? keyword : "normal"; }
     std::string expected() const
     {
       std::string list;
-      for (std::size_t k = 0; k < NC; k++) {
-        if (k > 0) list += k + 1 == NC ? " or " : ", ";
-        list += choices[k].name;
-      }
+      for_each_model<Variant>([&](auto index) {
+        if (index > 0) list += index + 1 == COUNT ? " or " : ", ";
+        list += ModelAt<Variant, index>::NAME;
+      });
       return list;
     }
-    std::string validate(const Model &model) const
+    // makes v the model called name (its defaults); false when there is none
+    bool select(const std::string &name, Variant &v) const
     {
-      for (const auto &row : rows)
-        if (row.kind == model.kind && !row.range.contains(model.*row.field))
-          return label(model.kind) + " " + row.word + " must be " + row.range.text();
-      return {};
+      bool found = false;
+      for_each_model<Variant>([&](auto index) {
+        if (!found && name == ModelAt<Variant, index>::NAME) {
+          v.template emplace<index>();
+          found = true;
+        }
+      });
+      return found;
     }
-    void mix(const Model &a, const Model &b, Model &mixed) const
+    std::string validate(const Variant &v) const
     {
-      for (const auto &row : rows) {
-        if (row.kind != a.kind) continue;
-        const double x = a.*row.field, y = b.*row.field;
-        if (row.mix == Mix::Geometric)
-          mixed.*row.field = x == y ? x : std::sqrt(x * y);
-        else if (row.mix == Mix::Arithmetic)
-          mixed.*row.field = 0.5 * (x + y);
-      }
-      // after the Poisson ratios: E_mix / (2 (1 - nu_mix^2)) is the pair's E*
-      for (const auto &row : rows) {
-        if (row.kind != a.kind || row.mix != Mix::ReducedModulus) continue;
-        const double nu_a = a.*row.poisson, nu_b = b.*row.poisson, nu = mixed.*row.poisson;
-        const double compliance =
-            (1.0 - nu_a * nu_a) / (a.*row.field) + (1.0 - nu_b * nu_b) / (b.*row.field);
-        mixed.*row.field = 2.0 * (1.0 - nu * nu) / compliance;
-      }
+      return visit_model(v, [&](const auto &model) {
+        for (const auto &row : model.ROWS)
+          if (!row.range.contains(model.*row.field))
+            return label(v) + " " + row.word + " must be " + range_text(row.range);
+        return std::string();
+      });
     }
-    void pack(const Model &model, std::vector<double> &out) const
+    // a and b hold the same model
+    void mix(const Variant &a, const Variant &b, Variant &mixed) const
     {
-      out.push_back(static_cast<double>(model.kind));
-      for (const auto &row : rows) out.push_back(model.*row.field);
+      visit_model(mixed, [&](auto &out) {
+        using Model = std::decay_t<decltype(out)>;
+        const Model &x = *std::get_if<Model>(&a), &y = *std::get_if<Model>(&b);
+        for (const auto &row : Model::ROWS) {
+          const double p = x.*row.field, q = y.*row.field;
+          if (row.mix == Mix::Geometric)
+            out.*row.field = p == q ? p : std::sqrt(p * q);
+          else if (row.mix == Mix::Arithmetic)
+            out.*row.field = 0.5 * (p + q);
+        }
+        // after the Poisson ratios: E_mix / (2 (1 - nu_mix^2)) is the pair's E*
+        for (const auto &row : Model::ROWS) {
+          if (row.mix != Mix::ReducedModulus) continue;
+          const double nu_a = x.*row.poisson, nu_b = y.*row.poisson, nu = out.*row.poisson;
+          const double compliance =
+              (1.0 - nu_a * nu_a) / (x.*row.field) + (1.0 - nu_b * nu_b) / (y.*row.field);
+          out.*row.field = 2.0 * (1.0 - nu * nu) / compliance;
+        }
+      });
     }
-    bool unpack(const double *&in, Model &model) const
+    // the model's code, then the parameters of every model (the defaults of the others)
+    void pack(const Variant &v, std::vector<double> &out) const
     {
-      const double kind = *in++;
-      if (!(kind >= 0.0 && kind < static_cast<double>(NC) && kind == std::floor(kind)))
+      out.push_back(static_cast<double>(v.index()));
+      for_each_model<Variant>([&](auto index) {
+        using Model = ModelAt<Variant, index>;
+        const Model *held = std::get_if<index>(&v);
+        const Model model = held ? *held : Model();
+        for (const auto &row : Model::ROWS) out.push_back(model.*row.field);
+      });
+    }
+    bool unpack(const double *&in, Variant &v) const
+    {
+      const double code = *in++;
+      if (!(code >= 0.0 && code < static_cast<double>(COUNT) && code == std::floor(code)))
         return false;
-      model.kind = static_cast<typename Model::Kind>(static_cast<int>(kind));
-      for (const auto &row : rows) model.*row.field = *in++;
+      for_each_model<Variant>([&](auto index) {
+        using Model = ModelAt<Variant, index>;
+        const double *values = in;
+        in += Model::ROWS.size();
+        if (index != static_cast<std::size_t>(code)) return;
+        Model &model = v.template emplace<index>();
+        for (const auto &row : Model::ROWS) model.*row.field = *values++;
+      });
       return true;
     }
-    static constexpr int packed_size() { return 1 + static_cast<int>(NR); }
+    static int packed_size()
+    {
+      int size = 1;
+      for_each_model<Variant>([&](auto index) {
+        size += static_cast<int>(ModelAt<Variant, index>::ROWS.size());
+      });
+      return size;
+    }
   };
 
-  template <class Model, std::size_t NC, std::size_t NR>
-  Table<Model, NC, NR> make_table(const char *keyword, const Choice<Model> (&choices)[NC],
-                                  const Row<Model> (&rows)[NR])
-  {
-    return {keyword, choices, rows};
-  }
-
-  const auto NORMAL = make_table("", NORMAL_CHOICES, NORMAL_ROWS);
-  const auto TANGENTIAL = make_table("tangential", TANGENTIAL_CHOICES, TANGENTIAL_ROWS);
-  const auto ROLLING = make_table("rolling", ROLLING_CHOICES, ROLLING_ROWS);
+  const Family<NormalModel> NORMAL{""};
+  const Family<TangentialModel> TANGENTIAL{"tangential"};
+  const Family<RollingModel> ROLLING{"rolling"};
 
   bool to_number(const std::string &word, double &value)
   {
@@ -184,7 +156,7 @@ namespace {
     return end && *end == '\0' && std::isfinite(value);
   }
 
-  // Reads words[k...]: a model name of the table, then its rows in table order.
+  // Reads words[k...]: a model name of a family, then its parameters in row order.
   class Reader {
    public:
     Reader(const std::vector<std::string> &words, std::string &error) : words(words), error(error)
@@ -194,68 +166,45 @@ namespace {
     bool done() const { return k >= words.size(); }
     const std::string &peek() const { return words[k]; }
 
-    template <class Table, class Model> bool model(const Table &table, Model &model)
+    template <class Variant> bool model(const Family<Variant> &family, Variant &v)
     {
-      const std::string what = *table.keyword ? table.keyword : "normal";
       if (done()) {
-        error = "missing " + what + " model (" + table.expected() + ")";
+        error = "missing " + family.what() + " model (" + family.expected() + ")";
         return false;
       }
-      const std::string &name = words[k];
-      for (const auto &c : table.choices)
-        if (name == c.name) {
-          ++k;
-          model.kind = c.kind;
-          return true;
-        }
-      error = "unknown " + what + " model '" + name + "' (expected " + table.expected() + ")";
+      if (family.select(words[k], v)) {
+        ++k;
+        return true;
+      }
+      error = "unknown " + family.what() + " model '" + words[k] + "' (expected " +
+          family.expected() + ")";
       return false;
     }
-    template <class Table, class Model> bool numbers(const Table &table, Model &model)
+    template <class Variant> bool numbers(const Family<Variant> &family, Variant &v)
     {
-      const std::string label = table.label(model.kind);
-      std::string signature = label;
-      int count = 0;
-      for (const auto &row : table.rows)
-        if (row.kind == model.kind) {
-          signature += std::string(" ") + row.word;
-          count++;
-        }
-      if (k + count > words.size()) {
-        error = "missing argument(s) for " + signature;
-        return false;
-      }
-      for (const auto &row : table.rows) {
-        if (row.kind != model.kind) continue;
-        if (!to_number(words[k], model.*row.field)) {
-          error = "expected a number for " + label + " " + row.word + ", got '" + words[k] + "'";
+      return visit_model(v, [&](auto &model) {
+        const std::string label = family.label(v);
+        if (k + model.ROWS.size() > words.size()) {
+          std::string signature = label;
+          for (const auto &row : model.ROWS) signature += std::string(" ") + row.word;
+          error = "missing argument(s) for " + signature;
           return false;
         }
-        ++k;
-      }
-      return true;
+        for (const auto &row : model.ROWS) {
+          if (!to_number(words[k], model.*row.field)) {
+            error = "expected a number for " + label + " " + row.word + ", got '" + words[k] + "'";
+            return false;
+          }
+          ++k;
+        }
+        return true;
+      });
     }
 
    private:
     const std::vector<std::string> &words;
     std::string &error;
   };
-
-  // LAMMPS's pair granular writes "hertz/material E damping nu" and names the damping model
-  // after the keyword "damping"; only the restitution damping is the one this package has.
-  std::string lammps_damping(const std::string &model, NormalModel &normal, bool numbers_given)
-  {
-    const std::string ours = "write 'hertz/material E nu e' or, in LAMMPS's order, "
-                             "'hertz/material E e nu damping coeff_restitution'";
-    if (normal.kind != NormalModel::Kind::HertzMaterial || !numbers_given)
-      return "damping " + model + " applies only to hertz/material with numbers (E e nu): " + ours;
-    if (model != "coeff_restitution")
-      return "damping " + model +
-          " is not available: hertz/material damps by the restitution coefficient e; " + ours;
-    // the numbers were read as E nu e; LAMMPS's order is E e nu
-    std::swap(normal.poisson, normal.restitution);
-    return {};
-  }
 
   // Every LAMMPS pair granular line names one of its tangential models, none of which is
   // this package's: so a copied line stops here, with a pointer to the mapping.
@@ -267,6 +216,22 @@ namespace {
         return "; '" + model + "' is LAMMPS pair granular's syntax, whose hertz/material numbers " +
             "are in another order (E damping nu): see doc/pair_granular_ellipsoid.rst";
     return {};
+  }
+
+  // hertz/material NAME: the material's E nu e in place of the numbers. 1 when read, 0 when
+  // the next word is no name for this law, -1 on a refusal.
+  int read_material(const std::vector<std::string> &words, std::size_t k, ForceLaw &law,
+                    const MaterialLookup &lookup, std::string &error)
+  {
+    auto *normal = std::get_if<HertzMaterialNormal>(&law.normal);
+    double value;
+    if (!normal || k >= words.size() || to_number(words[k], value)) return 0;
+    Material material{};
+    const std::string &name = words[k];
+    error = lookup ? lookup(name, material) : "unknown material '" + name + "' for hertz/material";
+    if (!error.empty()) return -1;
+    normal->set(material);
+    return 1;
   }
 
 }    // namespace
@@ -284,26 +249,10 @@ int parse_force_law(const std::vector<std::string> &words, ForceLaw &law, std::s
 {
   Reader in(words, error);
   if (!in.model(NORMAL, law.normal)) return -1;
-  bool numbers_given = true;
-  double value;
-  if (law.normal.kind == NormalModel::Kind::HertzMaterial && !in.done() &&
-      !to_number(in.peek(), value)) {
-    const std::string &name = in.peek();
-    Material material{};
-    const std::string refusal = lookup ? lookup(name, material)
-                                       : "unknown material '" + name + "' for hertz/material";
-    if (!refusal.empty()) {
-      error = refusal;
-      return -1;
-    }
-    law.normal.youngs = material.youngs;
-    law.normal.poisson = material.poisson;
-    law.normal.restitution = material.restitution;
-    numbers_given = false;
-    ++in.k;
-  } else if (!in.numbers(NORMAL, law.normal)) {
-    return -1;
-  }
+  const int material = read_material(words, in.k, law, lookup, error);
+  if (material < 0) return -1;
+  in.k += material;
+  if (!material && !in.numbers(NORMAL, law.normal)) return -1;
 
   while (!in.done()) {
     const std::string word = in.peek();
@@ -319,14 +268,15 @@ int parse_force_law(const std::vector<std::string> &words, ForceLaw &law, std::s
       if (!in.model(ROLLING, law.rolling) || !in.numbers(ROLLING, law.rolling)) return -1;
     } else if (word == "limit_damping") {
       ++in.k;
-      law.normal.limit_damping = true;
+      law.limit_damping = true;
     } else if (word == "damping") {
       ++in.k;
       if (in.done()) {
         error = "missing argument(s) for damping (coeff_restitution)";
         return -1;
       }
-      error = lammps_damping(words[in.k++], law.normal, numbers_given);
+      error = lammps_damping(words[in.k++], std::get_if<HertzMaterialNormal>(&law.normal),
+                             material == 0);
       if (!error.empty()) return -1;
     } else {
       break;
@@ -339,14 +289,14 @@ int parse_force_law(const std::vector<std::string> &words, ForceLaw &law, std::s
 
 std::string describe_models(const ForceLaw &law)
 {
-  return NORMAL.label(law.normal.kind) + ", " + TANGENTIAL.label(law.tangential.kind) + ", " +
-      ROLLING.label(law.rolling.kind) + (law.normal.limit_damping ? ", limit_damping" : "");
+  return NORMAL.label(law.normal) + ", " + TANGENTIAL.label(law.tangential) + ", " +
+      ROLLING.label(law.rolling) + (law.limit_damping ? ", limit_damping" : "");
 }
 
 std::string mix_laws(const ForceLaw &a, const ForceLaw &b, ForceLaw &mixed)
 {
-  if (a.normal.kind != b.normal.kind || a.tangential.kind != b.tangential.kind ||
-      a.rolling.kind != b.rolling.kind || a.normal.limit_damping != b.normal.limit_damping)
+  if (a.normal.index() != b.normal.index() || a.tangential.index() != b.tangential.index() ||
+      a.rolling.index() != b.rolling.index() || a.limit_damping != b.limit_damping)
     return "cannot mix '" + describe_models(a) + "' with '" + describe_models(b) + "'";
   mixed = a;
   NORMAL.mix(a.normal, b.normal, mixed.normal);
@@ -363,7 +313,7 @@ int packed_law_size()
 std::vector<double> pack_law(const ForceLaw &law)
 {
   std::vector<double> out;
-  out.push_back(law.normal.limit_damping ? 1.0 : 0.0);
+  out.push_back(law.limit_damping ? 1.0 : 0.0);
   NORMAL.pack(law.normal, out);
   TANGENTIAL.pack(law.tangential, out);
   ROLLING.pack(law.rolling, out);
@@ -372,7 +322,7 @@ std::vector<double> pack_law(const ForceLaw &law)
 
 bool unpack_law(const double *values, ForceLaw &law)
 {
-  law.normal.limit_damping = *values++ != 0.0;
+  law.limit_damping = *values++ != 0.0;
   return NORMAL.unpack(values, law.normal) && TANGENTIAL.unpack(values, law.tangential) &&
       ROLLING.unpack(values, law.rolling);
 }

@@ -3,7 +3,7 @@
    the doubles an engine keeps per neighbour pair (LAMMPS fix NEIGH_HISTORY, LIGGGHTS contact
    history). The only place that knows the layout.
 
-   Layout (PairCache::size(tangential) doubles)
+   Layout (PairHistory::size(law size) doubles: the pipeline's geometry, then the force law's)
      STATE          0     0 nothing, +-1 separating plane, +-2 contact normal (read with fabs)
      NORMAL         1-3   unit normal from A to B: the plane normal or the last contact normal
      PLANE_U        4     plane state: the plane passes through c_A + (1/2 + u)(c_B - c_A)
@@ -17,44 +17,47 @@
                           image of the same partner (a box narrower than the reach); a contact
                           whose centres moved more than belongs_to()'s tolerance since is
                           not this pair's
-     TANGENTIAL     10-12 tangential displacement (only for force laws with a history)
-   evaluate_pair reads and writes slots 0-9 (PIPELINE_SIZE); the force law owns 10-12, which
-   evaluate_pair only clears, with the rest, when a row is not the pair's. Slot 4 belongs to
-   the plane or to the contact, as the state says.
+     LAW            10-   the force law's history, ForceLaw::history_size() doubles: the
+                          named slots its models declare (tangential_history.h: the
+                          tangential displacement s, 10-12); none for laws without history
+   evaluate_pair reads and writes slots 0-9 (PIPELINE_SIZE); the force law owns the rest,
+   which evaluate_pair only clears, with the pipeline's, when a row is not the pair's. Slot 4
+   belongs to the plane or to the contact, as the state says. An engine keeps rows of one size
+   for all pairs, size(the largest history of its laws); a pair of a law that keeps less
+   leaves the rest of its law slots at zero.
 
-   The i/j swap rule: every slot changes sign when A and B are swapped (the state by
-   convention, n -> -n, u -> -u, s -> -s, dc -> -dc), so the swapped pair's history is the negated copy
-   (swapped()). That is the default transfer of LAMMPS's fix NEIGH_HISTORY and LIGGGHTS's
-   "newtonflag 1" history values, so neither engine needs a custom transfer. Storing the plane
-   relative to the two centres (u, not an absolute offset) also makes it independent of
-   periodic images and of which rank holds which copy.
+   The i/j swap rule, for every slot of the pipeline and of the laws: its value changes sign
+   when A and B are swapped (the state by convention, n -> -n, u -> -u, step -> -step,
+   dc -> -dc; a law's slots are declared so, e.g. s -> -s), so the swapped pair's history is
+   the negated copy (swapped()). That is the default transfer of LAMMPS's fix NEIGH_HISTORY
+   and LIGGGHTS's "newtonflag 1" history values, so neither engine needs a custom transfer.
+   Storing the plane relative to the two centres (u, not an absolute offset) also makes it
+   independent of periodic images and of which rank holds which copy.
 ------------------------------------------------------------------------- */
 
-#ifndef ELLIPSOID_DEP_ELLIPSOID_PAIR_CACHE_H
-#define ELLIPSOID_DEP_ELLIPSOID_PAIR_CACHE_H
+#ifndef ELLIPSOID_DEP_ELLIPSOID_PAIR_HISTORY_H
+#define ELLIPSOID_DEP_ELLIPSOID_PAIR_HISTORY_H
 
 #include "ellipsoid_wang.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace EllipsoidDep {
 
-class PairCache {
+class PairHistory {
  public:
-  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, NORMAL_STEP = 4, SEPARATION = 7,
-                       TANGENTIAL = 10;
+  static constexpr int STATE = 0, NORMAL = 1, PLANE_U = 4, NORMAL_STEP = 4, SEPARATION = 7;
+  static constexpr int PIPELINE_SIZE = 10;    // slots evaluate_pair uses
+  static constexpr int LAW = PIPELINE_SIZE;   // the first of the force law's slots
   static constexpr int LAYOUT_VERSION = 3;    // changes with the layout (restart files)
-  static constexpr int PIPELINE_SIZE = 10;     // slots evaluate_pair uses
-  static constexpr int TANGENTIAL_SIZE = 3;    // slots of the tangential displacement
-  static constexpr int size(bool tangential_history)
-  {
-    return PIPELINE_SIZE + (tangential_history ? TANGENTIAL_SIZE : 0);
-  }
+  // doubles per pair for laws that keep law_size doubles each
+  static constexpr int size(int law_size) { return PIPELINE_SIZE + law_size; }
 
   // the state slot holds +-code (the sign follows the pair order)
   enum class State : int { Empty = 0, Plane = 1, Contact = 2 };
 
-  explicit PairCache(double *values) : v(values) {}
+  explicit PairHistory(double *values) : v(values) {}
 
   // The history of the pair seen with A and B swapped (n doubles).
   static void swapped(const double *values, double *out, int n)
@@ -150,24 +153,25 @@ class PairCache {
     return step.squaredNorm() < MAX_PREDICTED_STEP * MAX_PREDICTED_STEP ? Vec3(n + step) : n;
   }
   static constexpr double MAX_PREDICTED_STEP = 0.05;    // radians per evaluation
-  // forget the plane or normal (the tangential slots are the force law's)
+  // forget the plane or normal (the law's slots are the force law's)
   void clear()
   {
     for (int k = 0; k < PIPELINE_SIZE; ++k) v[k] = 0.0;
   }
-  // forget everything: a row made for another pair or image (tangential: the row has the
-  // force law's slots)
-  void clear_row(bool tangential)
+  // forget everything: a row made for another pair or image, with law_size slots of the law
+  void clear_row(int law_size)
   {
     clear();
-    if (tangential) clear_tangential();
+    clear_law(law_size);
   }
 
-  double *tangential() { return v + TANGENTIAL; }
-  const double *tangential() const { return v + TANGENTIAL; }
-  void clear_tangential()
+  // the force law's history (ForceLaw::compute's history)
+  double *law() { return v + LAW; }
+  // law_size <= MOST slots: a bound the caller knows at compile time (ForceLaw::
+  // MAX_HISTORY_SIZE) makes this a few stores instead of a call to memset in a pair loop
+  template <int MOST = std::numeric_limits<int>::max()> void clear_law(int law_size)
   {
-    for (int k = 0; k < TANGENTIAL_SIZE; ++k) v[TANGENTIAL + k] = 0.0;
+    for (int k = 0; k < law_size && k < MOST; ++k) v[LAW + k] = 0.0;
   }
 
  private:
@@ -184,26 +188,6 @@ class PairCache {
     v[NORMAL_STEP + 1] = v[NORMAL_STEP + 2] = 0.0;
     v[SEPARATION] = v[SEPARATION + 1] = v[SEPARATION + 2] = 0.0;
   }
-};
-
-// The tangential displacement handed to a force law, which advances it in place: the stored
-// doubles, or a scratch copy for a look that must not change them (setup forces, single()).
-class TangentialHistory {
- public:
-  TangentialHistory(double *stored, bool advance) : p(stored)
-  {
-    if (stored && !advance) {
-      for (int k = 0; k < PairCache::TANGENTIAL_SIZE; ++k) scratch[k] = stored[k];
-      p = scratch;
-    }
-  }
-  TangentialHistory(const TangentialHistory &) = delete;
-  TangentialHistory &operator=(const TangentialHistory &) = delete;
-  double *get() const { return p; }
-
- private:
-  double scratch[PairCache::TANGENTIAL_SIZE];
-  double *p;
 };
 
 }    // namespace EllipsoidDep

@@ -1,0 +1,159 @@
+"""tools/study_stats.py and the verdicts of tools/study_verdicts.py and study_histograms.py
+on synthetic deposits with known answers (in memory; no deposit runs).
+
+Every shape has two seeds at +-e about its value, so its seed SD is e sqrt(2) and a pooled
+SD is known exactly; histograms are P = (1 + A P2(cos theta)) / (4 pi) on 18 bins, which
+cross the isotropic value and each other where P2 = 0, theta = acos(1/sqrt 3)."""
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+import study_histograms
+import study_stats
+import study_verdicts
+from study_claims import Selection
+
+MAGIC = math.acos(1 / math.sqrt(3))
+THETA = (np.arange(18) + 0.5) * math.pi / 18
+P2 = 0.5 * (3 * np.cos(THETA) ** 2 - 1)
+WEIGHT = np.cos(THETA - math.pi / 36) - np.cos(THETA + math.pi / 36)    # a bin's solid angle
+
+
+def histogram(amplitude, bump=0.0):
+    """(theta, P, fraction); bump: a relative excess in the first bin (and its mirror)"""
+    p = (1 + amplitude * P2) / (4 * math.pi)
+    p[[0, -1]] *= 1 + bump
+    return THETA.tolist(), p.tolist(), (p * 2 * math.pi * WEIGHT).tolist()
+
+
+def deposit(eta, zeta, e, phi, z, qzz, amp, bump=0.0):
+    """two seeds: (+e, -e) on every quantity, the histogram amplitude and the bump"""
+    return [{"eta": eta, "zeta": zeta, "phi": phi + s * e, "Z": z + s * 10 * e,
+             "Qzz": qzz + s * e, "fabric_anisotropy": amp / 10 + s * e,
+             "Nslab": 2000, "slab": 6.0, "contact_histo": histogram(amp + s * e, bump + s * e),
+             "orient_histo": histogram(-amp - s * e)} for s in (1, -1)]
+
+
+def test_pooled_groups():
+    shapes = {(1.0, 1.0): [0.1, 0.1], (1.2, 1.0): [0.1, 0.102], (1.0, 1.4): [0.1, 0.102],
+              (1.0, 1.6): [0.1, 0.102], (1.0, 2.0): [0.1, 0.102],
+              (1.2, 1.4): [0.2, 0.204], (1.4, 1.6): [0.2, 0.204], (1.2, 1.2): [0.2, 0.204],
+              (1.4, 1.4): [0.2, 0.204], (1.6, 1.6): [0.2]}
+    thin = {(2.0, 2.0): [0.3, 0.308], (3.0, 1.5): [0.3, 0.308], (2.5, 2.5): [0.3, 0.308],
+            (3.0, 3.0): [0.3, 0.308]}
+    groups, of_shape = study_stats.pooled_groups({**shapes, **thin})
+    # a pair (x, x + d) has the SD d / sqrt 2
+    assert groups["spheroids"] == {"sd": pytest.approx(math.sqrt(4 * 0.002 ** 2 / 2 / 5),
+                                                       rel=1e-9), "dof": 5, "shapes": 5}
+    assert groups["general a/c<4"]["sd"] == pytest.approx(0.004 / math.sqrt(2), rel=1e-9)
+    assert groups["general a/c>=4"]["sd"] == pytest.approx(0.008 / math.sqrt(2), rel=1e-9)
+    assert of_shape[(1.6, 1.6)] == "general a/c<4" and of_shape[(3.0, 1.5)] == "general a/c>=4"
+    # three thin shapes: 3 degrees of freedom, fewer than MIN_DOF: both halves merge
+    del thin[(3.0, 3.0)]
+    groups, of_shape = study_stats.pooled_groups({**shapes, **thin})
+    assert set(groups) == {"spheroids", "general"} and groups["general"]["dof"] == 7
+    assert groups["general"]["sd"] == pytest.approx(
+        math.sqrt((4 * 0.004 ** 2 + 3 * 0.008 ** 2) / 2 / 7), rel=1e-9)
+    # a lone sphere (1 degree of freedom) takes the pool of the whole selection
+    groups, of_shape = study_stats.pooled_groups({(1.0, 1.0): [0.1, 0.102], **thin,
+                                                  (1.2, 1.2): [0.2, 0.204]})
+    assert of_shape[(1.0, 1.0)] == "all" and groups["all"]["dof"] == 5
+
+
+def test_line_maximum_and_its_fit_window_systematic():
+    rng = np.random.default_rng(1)
+    x = np.array([1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8, 2.0])
+    m = study_stats.line_maximum(x, 0.64 - 0.1 * (x - 1.43) ** 2, [0.001] * len(x), rng)
+    assert set(m["fits"]) == {"parabola 3", "parabola 5", "parabola 7", "cubic 7"}
+    for f in m["fits"].values():    # a parabola: every window finds its vertex
+        assert f["x_max"] == pytest.approx(1.43, abs=1e-9) and f["kept"] > 1000
+    assert m["fits"]["parabola 5"]["kept"] > 1900    # the 3 points' vertex leaves more often
+    assert m["x_sys"] == pytest.approx(0.0, abs=1e-9) and 0.003 < m["x_sd"] < 0.05
+    y = 0.64 - 0.1 * (x - 1.43) ** 2 + 0.05 * (x - 1.43) ** 3    # skewed: the windows differ
+    m = study_stats.line_maximum(x, y, None, rng)
+    found = [f["x_max"] for f in m["fits"].values()]
+    assert m["fits"]["cubic 7"]["x_max"] == pytest.approx(1.43, abs=1e-9)    # exact
+    assert m["x_sys"] == pytest.approx((max(found) - min(found)) / 2) and m["x_sys"] > 0.005
+    assert m["x_max"] == m["fits"]["parabola 5"]["x_max"] and "x_sd" not in m
+    assert study_stats.line_maximum(x, -x, None, rng)["at_edge"]
+
+
+def test_seeds_needed_and_the_sign_test():
+    # 0.003 against two errors 0.001 at 2 seeds: 2.1 sigma; 3 sigma when the variance
+    # (2 + 2) 1e-6 / seeds is (0.003 / 3)^2: 4 seeds
+    assert study_stats.seeds_needed(0.003, [(0.001, 2), (0.001, 2)]) == 4
+    assert study_stats.seeds_needed(0.003, [(0.001, 2)], sys=0.0011) is None    # sys > d/3
+    assert study_stats.seeds_needed(0.0, [(0.001, 2)]) is None                  # no difference
+    k, n, p = study_stats.sign_test([1] * 22 + [-1] * 6)
+    assert (k, n) == (22, 28)
+    assert p == pytest.approx(stats.binomtest(22, 28).pvalue, rel=1e-9)
+    assert study_stats.decide(2.1, 8, 2, "yes", "no")["verdict"].endswith("needs 8")
+    assert study_stats.decide(-3.2, None, 2, "yes", "no")["verdict"] == "no"
+    # Student's t: 3.03 standard errors from an SD of 10 degrees of freedom are p = 0.013,
+    # 2.5 sigma: undecided, and at least one seed more than now
+    d = study_stats.decide(3.03, 2, 3, "yes", "no", dof=10)
+    assert d["z_equivalent"] == pytest.approx(stats.norm.isf(stats.t.sf(3.03, 10)), rel=1e-9)
+    assert 2.4 < d["z_equivalent"] < 2.6 and d["seeds_needed"] == 4
+    assert study_stats.equivalent_sigma(3.0, 10 ** 6) == pytest.approx(3.0, abs=1e-4)
+
+
+def selection(shift_qzz=0.0, asym=0.0):
+    """a map of shapes at e = 0.001: phi a ridge along eta = zeta, Z asymmetric by asym and
+    highest at a/c = 4 on the diagonal, Q_zz shifted by shift_qzz, fabric growing with a/c;
+    the sphere's bin near the vertical is 20 % low"""
+    grid = [1.0, 1.2, 1.4, 1.6, 2.0, 2.5, 3.0]
+    out = []
+    for eta in grid:
+        for zeta in grid:
+            ac = eta * zeta
+            out += deposit(eta, zeta, 0.001,
+                           0.64 - 0.01 * (eta - zeta) ** 2 - 0.005 * (ac - 2) ** 2,
+                           6.5 + 0.1 * ac + (asym if eta > zeta else 0.0)
+                           - 0.15 * max(0.0, ac - 4),
+                           -0.05 * (ac - 1) + shift_qzz, 0.0 if ac == 1 else 0.1 * ac,
+                           -0.2 if ac == 1 else 0.0)
+    return Selection(out)
+
+
+def test_asymmetry_delta_r_and_fall_back():
+    base, poly = selection(asym=0.05), selection(shift_qzz=0.01)
+    a = study_verdicts.asymmetry(base)
+    # Z's pairs differ by 0.05 exactly; each Z has the SD 0.01 sqrt 2, SE 0.01
+    assert a["Z"]["n"] == 21 and a["Z"]["mean"] == pytest.approx(0.05)
+    assert a["Z"]["se"] == pytest.approx(0.01 * math.sqrt(2) / math.sqrt(21), rel=1e-6)
+    assert a["Z"]["positive"] == 21 and a["Z"]["verdict"].startswith("asymmetric: larger")
+    assert a["phi"]["mean"] == pytest.approx(0.0, abs=1e-12)
+    assert a["phi"]["verdict"].startswith("undecided")
+    (d,) = study_verdicts.delta_r_effects({(0.0, "coulomb"): base, (0.6, "coulomb"): poly},
+                                          "coulomb")
+    q = d["Qzz"]
+    assert q["n"] == 48 and q["mean"] == pytest.approx(0.01)    # the sphere left out
+    assert q["se"] == pytest.approx(0.001 * math.sqrt(2) / math.sqrt(48), rel=1e-6)
+    assert q["verdict"] == "larger at delta_r 0.6" and q["seeds_needed"] is None
+    assert d["depth"]["thickness_mean"] == 6.0
+    f = study_verdicts.fall_back(base)
+    # along eta = zeta, Z = 6.5 + 0.1 ac - 0.15 max(0, ac - 4): 6.9, 6.7875, 6.65 at eta = 2,
+    # 2.5, 3; each with the SE 0.01
+    assert f["peak"] == [2.0, 2.0] and f["slope_thin"] == f["slope_from_peak"]
+    assert f["slope_thin"]["slope"] == pytest.approx(-0.25, rel=1e-9)
+    assert f["slope_thin"]["se"] == pytest.approx(0.01 / math.sqrt(0.5), rel=1e-6)
+    assert f["slope_thin"]["verdict"] == "falls"
+    assert f["end_minus_peak"]["difference"] == pytest.approx(-0.25, rel=1e-9)
+    assert f["end_minus_peak"]["z"] == pytest.approx(-0.25 / (0.01 * math.sqrt(2)), rel=1e-6)
+
+
+def test_crossings_and_sphere_isotropy():
+    base = selection()
+    both = study_histograms.crossings_both(base, study_verdicts.PAPER_ANGLES)
+    for key in ("contact_normals", "long_axes"):
+        iso = both[key]["isotropic_level"]
+        assert all(abs(r["theta"] - MAGIC) < 2e-3 for r in iso["shapes"])
+        mutual = both[key]["each_other"]
+        assert mutual["pairs"] > 100 and abs(mutual["median"] - MAGIC) < 2e-3
+        assert mutual["median_se"] > 0
+    s = study_histograms.sphere_isotropy({(0.0, "coulomb"): base}, (0.0, "coulomb"))
+    assert s["deviation"][0] == pytest.approx(-0.2, abs=1e-5)
+    assert s["largest"]["theta"] == pytest.approx(THETA[0])
+    assert not s["within_10_percent"] and s["p_isotropic"] < 1e-6

@@ -1,0 +1,142 @@
+"""Moving walls: `wiggle dim A period` and `shear dim v` of fix wall/gran/ellipsoid, the words
+and motion of LAMMPS's fix wall/gran (wall at lo + A (1 - cos(omega t)), velocity
+A omega sin(omega t); a shearing wall stays in place and moves along dim at v).
+
+Sphere limit: a sphere bouncing on a resting or a wiggling floor follows the trajectory it
+follows under LAMMPS's fix wall/gran with the same motion and the mapped law (hertz/material
+with damping coeff_restitution, frictionless), step for step. Shear, with friction: a sphere
+resting on a floor that starts to shear is first pushed along the shear by the tangential
+spring (force kt v dt after one step, from the law's closed form) and turned about the axis
+normal to the shear and the floor, and on a resting floor it is not.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from conftest import new_lammps
+
+E, NU, REST = 1.0e5, 0.3, 0.8
+RADIUS, DENSITY = 0.5, 1.0
+DT = 1e-4
+
+
+def sphere_on_floor(style, wall, motion, z0=0.62, vz=-0.5):
+    """One sphere above the floor z = 0, falling; LAMMPS's sphere style and fix wall/gran
+    (style 'sphere'), or this package (style 'ellipsoid')."""
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        units lj
+        atom_style {style}
+        atom_modify map array
+        boundary p p f
+        comm_modify vel yes
+        region box block 0 4 0 4 0 6
+        create_box 1 box
+        create_atoms 1 single 2.0 2.0 {z0}
+        """)
+    if style == "sphere":
+        lmp.command(f"set type 1 diameter {2 * RADIUS}")
+    else:
+        lmp.command(f"set type 1 shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}")
+    lmp.commands_string(f"""
+        set type 1 density {DENSITY}
+        velocity all set 0.0 0.0 {vz}
+        fix g all gravity 1.0 vector 0 0 -1
+        {wall} zplane 0.0 NULL {motion}
+        fix i all {"nve/sphere" if style == "sphere" else "nve/ellipsoid"}
+        timestep {DT}
+        """)
+    return lmp
+
+
+def trajectory(lmp, steps, every):
+    z, vz = [], []
+    for _ in range(steps // every):
+        lmp.command(f"run {every} post no")
+        z.append(lmp.numpy.extract_atom("x")[0][2])
+        vz.append(lmp.numpy.extract_atom("v")[0][2])
+    return np.array(z), np.array(vz)
+
+
+@pytest.mark.parametrize("motion", ["", "wiggle z 0.05 0.02", "wiggle z 0.02 0.005"])
+def test_sphere_on_a_moving_floor_follows_fix_wall_gran(motion):
+    ours = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                           f"{REST}", motion)
+    ref = sphere_on_floor("sphere", f"fix w all wall/gran granular hertz/material {E} {REST} {NU} "
+                          "damping coeff_restitution tangential linear_nohistory 0 0", motion)
+    z, vz = trajectory(ours, 6000, 200)
+    z_ref, vz_ref = trajectory(ref, 6000, 200)
+    ours.close()
+    ref.close()
+    # the sphere touched the floor (its lowest point below the floor's highest position)
+    assert z.min() < RADIUS + (0.1 if "wiggle" in motion else 0.0)
+    np.testing.assert_allclose(z, z_ref, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(vz, vz_ref, rtol=1e-8, atol=1e-10)
+
+
+def test_wiggling_floor_moves_as_fix_wall_gran_says():
+    """A sphere resting on a floor that wiggles slowly follows the floor: its height minus the
+    resting height is A (1 - cos(omega t)) to within the contact's compliance."""
+    amplitude, period = 0.02, 2.0
+    lmp = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                          f"{REST}", f"wiggle z {amplitude} {period}", z0=RADIUS, vz=0.0)
+    lmp.command("run 5000 post no")    # settles at its resting overlap (floor nearly still)
+    t0 = 5000 * DT
+    rest = lmp.numpy.extract_atom("x")[0][2] - amplitude * (1 - math.cos(2 * math.pi * t0 / period))
+    heights, expected = [], []
+    for k in range(1, 11):
+        lmp.command("run 1000 post no")
+        t = t0 + k * 1000 * DT
+        heights.append(lmp.numpy.extract_atom("x")[0][2])
+        expected.append(rest + amplitude * (1 - math.cos(2 * math.pi * t / period)))
+    lmp.close()
+    # the floor accelerates by up to A omega^2 (0.2 g here): the contact's compliance lets the
+    # sphere lag by a part of its resting Hertz overlap, and no more
+    e_star = E / (2 * (1 - NU**2))
+    mass = DENSITY * 4 / 3 * math.pi * RADIUS**3
+    resting_overlap = (mass / (4 / 3 * e_star * math.sqrt(RADIUS)))**(2 / 3)
+    np.testing.assert_allclose(heights, expected, atol=resting_overlap)
+    assert max(heights) - min(heights) > 0.5 * amplitude
+
+
+@pytest.mark.parametrize("vshear", [0.0, 0.3])
+def test_shearing_floor_drags_a_resting_sphere(vshear):
+    kt, mu = 2.0e3, 0.5
+    lmp = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                          f"{REST} tangential history {kt} {mu}", f"shear x {vshear}", z0=RADIUS,
+                          vz=0.0)
+    lmp.command("unfix g")    # resting on the floor without gravity: no normal force changes
+    lmp.command("set atom 1 z 0.499")
+    lmp.command("run 1 post no")
+    f = lmp.numpy.extract_atom("f")[0].copy()
+    tq = lmp.numpy.extract_atom("torque")[0].copy()
+    lmp.close()
+    # the tangential spring after one step: kt times the floor's slip v dt, against the slip
+    # of the sphere relative to the floor (the floor moves +x under the sphere): along +x. The
+    # setup force does not advance the spring, so the sphere did not move before that step
+    assert f[0] == pytest.approx(kt * vshear * DT, rel=1e-12, abs=1e-15)
+    assert f[1] == pytest.approx(0.0, abs=1e-12)
+    # the drag at the sphere's bottom turns it about -y (torque = r x f, r pointing down)
+    assert tq[1] == pytest.approx(-f[0] * (RADIUS - 0.0005), rel=1e-3, abs=1e-12)
+
+
+@pytest.mark.parametrize("args, pattern", [
+    ("zplane 0 NULL wiggle z 0.1", "Illegal|missing|Expected"),
+    ("zplane 0 NULL wiggle q 0.1 1", "dimension must be x, y or z"),
+    ("zplane 0 NULL wiggle z 0.1 0", "period must be > 0"),
+    ("zplane 0 NULL shear z 0.5", "shear along z"),
+    ("zplane 0 NULL shear x 0.5 wiggle z 0.1 1", "one of wiggle and shear"),
+])
+def test_bad_motion_is_refused(args, pattern):
+    lmp = new_lammps()
+    lmp.commands_string("""
+        units lj
+        atom_style ellipsoid
+        boundary p p f
+        region box block 0 4 0 4 0 6
+        create_box 1 box
+        """)
+    with pytest.raises(Exception, match=pattern):
+        lmp.command(f"fix w all wall/gran/ellipsoid hertz 1e4 10 {args}")
+    lmp.close()

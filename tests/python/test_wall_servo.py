@@ -1,0 +1,121 @@
+"""The servo wall of fix wall/gran/ellipsoid: `servo force|stress TARGET gain G vmax V` moves
+its one wall along its normal at u = G (F_target - F), |u| <= vmax, F the particles' push on
+it at the previous step.
+
+A sphere on a floor under a servo lid (no gravity): the lid comes down at vmax, then settles
+where the Hertz contact carries the target, to 1e-6 of the target, with an overshoot of the
+force below 5 % (the controller is first order: the lid has no inertia, the sphere little
+against the contact's stiffness at this gain); the lid's height then equals the analytic one,
+2 r - 2 xi with F = 4/3 E* sqrt(R*) xi^1.5 at each of the two contacts. With `stress` the
+target is the stress times the box's cross-section. A restart continues the servo exactly.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from conftest import new_lammps
+
+E, NU, REST = 1.0e5, 0.3, 0.5
+RADIUS = 0.5
+TARGET = 2.0
+LAW = f"hertz/material {E} {NU} {REST}"
+
+
+def sphere_under_lid(servo, lid=1.05, extra=""):
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        units lj
+        atom_style ellipsoid
+        atom_modify map array
+        boundary p p f
+        comm_modify vel yes
+        region box block 0 2 0 2 0 3
+        create_box 1 box
+        create_atoms 1 single 1.0 1.0 {RADIUS}
+        set type 1 shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}
+        set type 1 density 1.0
+        fix floor all wall/gran/ellipsoid {LAW} zplane 0.0 NULL
+        fix lid all wall/gran/ellipsoid {LAW} zplane NULL {lid} {servo} {extra}
+        fix i all nve/ellipsoid
+        timestep 1e-4
+        """)
+    return lmp
+
+
+def lid_force(lmp):
+    # the lid's vector: the force of the particles on it; they push it up (+z)
+    return lmp.extract_fix("lid", 0, 1, 2)
+
+
+def hertz_overlap(force, radius):
+    e_star = E / (2 * (1 - NU**2))
+    return (force / (4 / 3 * e_star * math.sqrt(radius)))**(2 / 3)
+
+
+@pytest.mark.parametrize("kind, target", [("force", TARGET), ("stress", TARGET / 4.0)])
+def test_servo_lid_reaches_the_target(kind, target):
+    lmp = sphere_under_lid(f"servo {kind} {target} gain 0.05 vmax 0.5")
+    forces = []
+    for _ in range(120):
+        lmp.command("run 100 post no")
+        forces.append(lid_force(lmp))
+    z_sphere = lmp.numpy.extract_atom("x")[0][2]
+    lmp.close()
+    forces = np.array(forces)
+    assert forces[-1] == pytest.approx(TARGET, rel=1e-6)
+    assert forces.max() < 1.05 * TARGET
+    # force balance: the floor carries what the lid pushes, both contacts xi deep (R* = r)
+    xi = hertz_overlap(TARGET, RADIUS)
+    assert z_sphere == pytest.approx(RADIUS - xi, rel=1e-6)
+
+
+def test_servo_restart_continues_exactly(tmp_path):
+    servo = "servo force 2.0 gain 0.05 vmax 0.5"
+    lmp = sphere_under_lid(servo)
+    lmp.command("run 6000 post no")
+    lmp.command(f"write_restart {tmp_path}/servo.restart")
+    lmp.command("run 1500 post no")
+    straight = (lmp.numpy.extract_atom("x")[0][2], lid_force(lmp))
+    lmp.close()
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        atom_style ellipsoid
+        read_restart {tmp_path}/servo.restart
+        comm_modify vel yes
+        fix floor all wall/gran/ellipsoid {LAW} zplane 0.0 NULL
+        fix lid all wall/gran/ellipsoid {LAW} zplane NULL 1.05 {servo}
+        fix i all nve/ellipsoid
+        timestep 1e-4
+        run 1500 post no
+        """)
+    continued = (lmp.numpy.extract_atom("x")[0][2], lid_force(lmp))
+    lmp.close()
+    assert straight[1] > 0.5 * 2.0    # in contact, the servo acting
+    assert continued[0] == pytest.approx(straight[0], rel=1e-12)
+    assert continued[1] == pytest.approx(straight[1], rel=1e-9)
+
+
+@pytest.mark.parametrize("words, pattern", [
+    ("servo force -1 gain 0.1 vmax 1", "target force must be > 0"),
+    ("servo force 1 gain 0 vmax 1", "gain must be > 0"),
+    ("servo force 1 gain 0.1 vmax 0", "vmax must be > 0"),
+    ("servo pressure 1 gain 0.1 vmax 1", "expected force or stress"),
+    ("servo force 1 vmax 0.1 gain 1", "expected 'servo force VALUE gain G vmax V'"),
+    ("servo force 1 gain 0.1 vmax 1 wiggle z 0.1 1", "one of wiggle"),
+])
+def test_bad_servo_is_refused(words, pattern):
+    lmp = new_lammps()
+    lmp.commands_string("""
+        units lj
+        atom_style ellipsoid
+        boundary p p f
+        region box block 0 2 0 2 0 3
+        create_box 1 box
+        """)
+    with pytest.raises(Exception, match=pattern):
+        lmp.command(f"fix lid all wall/gran/ellipsoid {LAW} zplane NULL 1.3 {words}")
+    with pytest.raises(Exception, match="servo moves one wall"):
+        lmp.command(f"fix lid all wall/gran/ellipsoid {LAW} zplane 0 1.3 servo force 1 gain 0.1 "
+                    "vmax 1")
+    lmp.close()

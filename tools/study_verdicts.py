@@ -1,0 +1,252 @@
+"""The verdicts of the study (claims.json `verdicts`), each with its significance and, where
+it is below 3 sigma, the seeds per point a 3-sigma verdict needs (tools/study_stats.py):
+
+* `errors`: the pooled seed SD of phi, Z, Q_zz and a_z per group of shapes, per selection;
+* `maximum`: the diagonal maximum's position (statistical and fit-window errors) against the
+  paper's 1.4 and the golden ratio, for every selection;
+* `ridge`: the diagonal maximum against the prolate and oblate maxima, as fitted maxima
+  (with the fit-window systematic) and between the highest measured points;
+* `asymmetry`: X(eta, zeta) - X(zeta, eta), eta > zeta, over the map's pairs (X = phi, Z, Q_zz,
+  a_z): mean, sign count, chi^2;
+* `delta_r`: Q_zz, a_z, phi and Z at delta_r > 0 against delta_r = 0 over the shapes, with the
+  measuring slab's depth (delta_r is confounded with it at fixed N);
+* `fall_back`: Z along the diagonal beyond its highest point;
+* `crossings`, `sphere_isotropy`: tools/study_histograms.py.
+"""
+import math
+
+import numpy as np
+from scipy import stats
+
+from study_histograms import crossings_both, sphere_isotropy
+from study_stats import MIN_DOF, SIGMA, THIN, decide, seeds_needed, sign_test, significance
+
+GOLDEN = (1 + math.sqrt(5)) / 2
+QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
+PAPER_ANGLES = {"contact_normals": 0.2, "long_axes": 1 / 3}    # pi/5, pi/3
+
+
+def selection_name(key):
+    return "delta_r %g, %s" % key
+
+
+def errors(selections):
+    return [{"delta_r": dr, "law": law, "quantity": q, "groups": sel.quantity(q).groups}
+            for (dr, law), sel in selections.items() for q in QUANTITIES if sel.has(q)]
+
+
+def maximum_position(m):
+    """a fitted maximum's position against 1.4 and the golden ratio"""
+    if m is None or "x_max" not in m:
+        return None
+    err = math.hypot(m.get("x_max_sd") or 0.0, m["x_max_sys"])
+    return {"x_max": m["x_max"], "stat": m.get("x_max_sd"), "sys": m["x_max_sys"],
+            "fits": {k: f["x_max"] for k, f in m["fits"].items()},
+            "z_from_1.4": (m["x_max"] - 1.4) / err if err else None,
+            "z_from_golden_ratio": (m["x_max"] - GOLDEN) / err if err else None,
+            "phi_max": m["phi_max"], "phi_stat": m.get("phi_max_sd"), "phi_sys": m["phi_max_sys"]}
+
+
+def compare_fits(a, b):
+    """fitted heights a - b: nominal difference, bootstrap error, fit-window systematic"""
+    windows = [k for k in a["fits"] if k in b["fits"] and a["fits"][k].get("x_max") is not None
+               and b["fits"][k].get("x_max") is not None]
+    per_window = {k: a["fits"][k]["y_max"] - b["fits"][k]["y_max"] for k in windows}
+    stat = math.hypot(a.get("phi_max_sd") or 0.0, b.get("phi_max_sd") or 0.0)
+    sys = (max(per_window.values()) - min(per_window.values())) / 2
+    return a["phi_max"] - b["phi_max"], stat, sys, per_window
+
+
+def ridge(maxima, base):
+    """the diagonal's maximum against the prolate and oblate ones, both ways"""
+    diag = maxima.get("diagonal")
+    out = {}
+    for name, highest in (("prolate", lambda x: (x, 1.0)), ("oblate", lambda x: (1.0, x))):
+        other = maxima.get(name)
+        if not diag or not other or "phi_max" not in diag or "phi_max" not in other:
+            continue
+        d, stat, sys, per_window = compare_fits(diag, other)
+        sa, sb = (diag["x_highest"],) * 2, highest(other["x_highest"])
+        na, nb = len(base.phi[sa]), len(base.phi[sb])
+        seeds = "%d and %d" % (na, nb) if na != nb else "%d" % na
+        z = significance(d, stat, sys)
+        need = seeds_needed(d, [(diag.get("phi_max_sd"), na), (other.get("phi_max_sd"), nb)],
+                            sys)
+        yes, no = "the diagonal's is higher", "the %s line's is higher" % name
+        dof = min(base.pooled.dof(sa), base.pooled.dof(sb))
+        fitted = dict({"difference": d, "stat": stat, "sys": sys, "per_window": per_window},
+                      **decide(z, need, seeds, yes, no, dof))
+        ea, eb = base.standard_error(sa), base.standard_error(sb)
+        dh = base.pooled.mean(sa) - base.pooled.mean(sb)
+        se = math.hypot(ea, eb) if ea is not None and eb is not None else None
+        z = significance(dh, se)
+        need = seeds_needed(dh, [(ea, na), (eb, nb)])
+        out[name] = {"fitted": fitted, "highest": dict(
+            {"diagonal": list(sa), "other": list(sb), "difference": dh, "se": se},
+            **decide(z, need, seeds, yes, no, dof))}
+    return out
+
+
+def mean_of_differences(rows, seeds, dof, yes, no):
+    """rows [(difference, se, var at one seed)]: the mean, its error, its significance
+    (Student's t with dof, the fewest of the pooled SDs'), the sign test, chi^2 and the
+    verdict (with the seeds per point a 3-sigma mean needs)"""
+    d = np.array([r[0] for r in rows])
+    n = len(rows)
+    se = math.sqrt(sum(r[1] ** 2 for r in rows)) / n
+    var1 = sum(r[2] for r in rows) / n ** 2
+    mean = float(d.mean())
+    z = significance(mean, se)
+    chi2 = float(sum((r[0] / r[1]) ** 2 for r in rows))
+    k, m, p = sign_test(d)
+    need = seeds_needed(mean, [(se, var1 / se ** 2)])    # se^2 * seeds = var1
+    return dict({"n": n, "mean": mean, "se": se, "positive": k, "nonzero": m,
+                 "sign_p": p, "chi2": chi2, "chi2_p": float(stats.chi2.sf(chi2, n)),
+                 "sd_over_shapes": float(d.std(ddof=1)) if n > 1 else None, "seeds": seeds},
+                **decide(z, need, seeds, yes, no, dof))
+
+
+def asymmetry(base):
+    """X(eta, zeta) - X(zeta, eta) with eta > zeta, over the pairs of the map"""
+    out = {}
+    for q in (q for q in QUANTITIES if base.has(q)):
+        pooled = base.quantity(q)
+        rows, pairs = [], []
+        for (e, z) in pooled.values:
+            if e > z and (z, e) in pooled.values:
+                a, b = (e, z), (z, e)
+                if pooled.se(a) is None or pooled.se(b) is None:
+                    continue
+                rows.append((pooled.mean(a) - pooled.mean(b),
+                             math.hypot(pooled.se(a), pooled.se(b)),
+                             pooled.sd(a) ** 2 + pooled.sd(b) ** 2))
+                pairs.append([e, z])
+        if not rows:
+            continue
+        dof = min(g["dof"] for g in pooled.groups.values())
+        m = mean_of_differences(rows, "2-3", dof, "asymmetric: larger for eta > zeta",
+                                "asymmetric: larger for eta < zeta")
+        k = int(np.argmax([abs(r[0]) for r in rows]))
+        m["largest"] = {"pair": pairs[k], "difference": rows[k][0], "se": rows[k][1]}
+        out[q] = m
+    return out
+
+
+def depth(selection):
+    """the measuring slab: thickness (d) and solid per area phi * thickness over deposits"""
+    if any(d.get("slab") is None for d in selection.deposits):
+        return None
+    t = np.array([d["slab"] for d in selection.deposits])
+    solid = np.array([float(d["phi"]) * d["slab"] for d in selection.deposits])
+    return {"thickness_mean": float(t.mean()), "thickness_range": [float(t.min()),
+                                                                   float(t.max())],
+            "solid_per_area_mean": float(solid.mean())}
+
+
+def delta_r_effects(selections, law):
+    """per delta_r > 0 of the default law and quantity: X(delta_r) - X(0) over the shapes
+    present at both (Q_zz: without the sphere, whose long axis is arbitrary)"""
+    base = selections.get((0.0, law))
+    if base is None:
+        return []
+    out = []
+    for (dr, name), sel in selections.items():
+        if name != law or dr == 0.0:
+            continue
+        entry = {"delta_r": dr, "depth": depth(sel), "depth_at_0": depth(base)}
+        for q in (q for q in QUANTITIES if sel.has(q) and base.has(q)):
+            p, p0 = sel.quantity(q), base.quantity(q)
+            shapes = [s for s in p.values if s in p0.values and not (q == "Qzz" and
+                                                                    s == (1.0, 1.0))]
+            if not shapes or any(p.se(s) is None or p0.se(s) is None for s in shapes):
+                continue
+            rows = [(p.mean(s) - p0.mean(s), math.hypot(p.se(s), p0.se(s)),
+                     p.sd(s) ** 2 + p0.sd(s) ** 2) for s in shapes]
+            dof = min(g["dof"] for g in list(p.groups.values()) + list(p0.groups.values()))
+            m = mean_of_differences(rows, "2-3", dof, "larger at delta_r %g" % dr,
+                                    "smaller at delta_r %g" % dr)
+            m["relative"] = m["mean"] / float(np.mean([abs(p0.mean(s)) for s in shapes]))
+            entry[q] = m
+        out.append(entry)
+    return out
+
+
+def weighted_slope(x, y, se):
+    w = 1 / np.asarray(se) ** 2
+    x, y = np.asarray(x), np.asarray(y)
+    xm = np.sum(w * x) / w.sum()
+    sxx = np.sum(w * (x - xm) ** 2)
+    return float(np.sum(w * (x - xm) * y) / sxx), float(1 / math.sqrt(sxx))
+
+
+def slope_entry(z, shapes):
+    """the weighted slope of Z against eta over the shapes, its significance and seeds"""
+    slope, se = weighted_slope([s[0] for s in shapes], [z.mean(s) for s in shapes],
+                               [z.se(s) for s in shapes])
+    seeds = len(z.values[shapes[0]])
+    need = seeds_needed(slope, [(se, seeds)])
+    return dict({"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes),
+                 "slope": slope, "se": se},
+                **decide(slope / se, need, seeds, "rises", "falls", min(map(z.dof, shapes))))
+
+
+def fall_back(sel):
+    """Z along eta = zeta: the slope over eta >= 2 (a/c >= 4, chosen before looking) and from
+    the highest point on (biased to fall: the highest point is the noisiest upward), the end
+    against the highest point and against the highest spheroid"""
+    if not sel.has("Z"):
+        return None
+    z = sel.quantity("Z")
+    diag = sorted(s for s in z.values if s[0] == s[1])
+    if len(diag) < 3 or any(z.se(s) is None for s in z.values):
+        return None
+    k = int(np.argmax([z.mean(s) for s in diag]))
+    out = {"peak": list(diag[k]), "end": list(diag[-1])}
+    thin = [s for s in diag if s[0] * s[1] >= THIN]
+    if len(thin) >= 2:
+        out["slope_thin"] = slope_entry(z, thin)
+    if len(diag) - k >= 2:
+        out["slope_from_peak"] = slope_entry(z, diag[k:])
+    pairs = {"end_minus_peak": (diag[-1], diag[k])}
+    spheroids = [s for s in z.values if (s[0] == 1.0) != (s[1] == 1.0)]
+    if spheroids:
+        pairs["end_minus_highest_spheroid"] = (diag[-1], max(spheroids, key=z.mean))
+    for key, (a, b) in pairs.items():
+        if a == b:
+            continue
+        d, se = z.mean(a) - z.mean(b), math.hypot(z.se(a), z.se(b))
+        need = seeds_needed(d, [(z.se(a), len(z.values[a])), (z.se(b), len(z.values[b]))])
+        out[key] = dict({"shapes": [list(a), list(b)], "difference": d, "se": se},
+                        **decide(d / se, need, len(z.values[a]), "higher", "lower",
+                                 min(z.dof(a), z.dof(b))))
+    return out
+
+
+def verdicts(claims, selections, law):
+    """the verdicts of claims.json from its maxima and the selections {(delta_r, law):
+    study_claims.Selection}"""
+    base = selections.get((0.0, law))
+    out = {"sigma": SIGMA, "groups": {"min_dof": MIN_DOF, "thin_from_a/c": THIN},
+           "errors": errors(selections), "maximum": [], "fall_back": []}
+    diagonal_maxima = {(0.0, law): claims["maxima"].get("diagonal")}
+    diagonal_maxima.update({(p["delta_r"], law): p["diagonal_maximum"]
+                            for p in claims["polydispersity"]["density"]})
+    diagonal_maxima.update({(m["delta_r"], m["law"]): m["diagonal_maximum"]
+                            for m in claims["laws"]})
+    for (dr, name), m in sorted(diagonal_maxima.items()):
+        position = maximum_position(m)
+        if position:
+            out["maximum"].append(dict({"delta_r": dr, "law": name}, **position))
+    for (dr, name), sel in selections.items():
+        f = fall_back(sel) if dr == 0.0 else None
+        if f:
+            out["fall_back"].append(dict({"delta_r": dr, "law": name}, **f))
+    if base is None:
+        return out
+    out["ridge"] = ridge(claims["maxima"], base)
+    out["asymmetry"] = asymmetry(base)
+    out["delta_r"] = delta_r_effects(selections, law)
+    out["crossings"] = crossings_both(base, PAPER_ANGLES)
+    out["sphere_isotropy"] = {selection_name(k): sphere_isotropy(selections, k)
+                              for k in selections if (1.0, 1.0) in selections[k].shapes}
+    return out
