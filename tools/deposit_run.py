@@ -34,6 +34,8 @@ import subprocess
 import sys
 import time
 
+import deposit_report
+
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..")))
 DEFAULT_INPUT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
@@ -195,8 +197,9 @@ def run_lammps(args, settings, out, resume_from=None, resume_step=None):
     return result, wall
 
 
-def read_histo(path):
-    """fix ave/time mode vector file: last block -> (theta, P, fraction) lists"""
+def read_histo(path, columns=3):
+    """fix ave/time mode vector file: its last block's first `columns` value columns as lists
+    (e.g. theta, P, fraction)"""
     rows, block = [], []
     with open(path) as f:
         for line in f:
@@ -207,11 +210,11 @@ def read_histo(path):
                 block = []
                 rows.append(block)
             else:
-                block.append([float(x) for x in w[1:4]])
+                block.append([float(x) for x in w[1:1 + columns]])
     if not rows or not rows[-1]:
         raise ValueError("no histogram in %s" % path)
     b = rows[-1]
-    return [r[0] for r in b], [r[1] for r in b], [r[2] for r in b]
+    return tuple([r[k] for r in b] for k in range(columns))
 
 
 def read_packing(path):
@@ -226,52 +229,6 @@ def read_packing(path):
             except ValueError:
                 d[k] = v.strip()
     return d
-
-
-def plot_profile(out, title, pk):
-    """phi(z) of compute packing/profile (profile.dat) with the slab of packing.dat"""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    z, phi, _ = read_histo(os.path.join(out, "profile.dat"))
-    fig, ax = plt.subplots(figsize=(4.2, 5.0))
-    ax.plot(phi, z, "-", lw=1, label=r"$\phi(z)$")
-    ax.axhspan(pk["zlo"], pk["zhi"], color="C1", alpha=0.15, label="slab of packing.dat")
-    ax.axvline(pk["phi"], color="gray", ls="--", label=r"$\phi$ of the slab")
-    ax.set_xlabel(r"solid fraction $\phi(z)$")
-    ax.set_ylabel("z")
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "profile.png"), dpi=120)
-    plt.close(fig)
-
-
-def plot_histograms(out, title):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    written = []
-    for name, xlabel, what in (
-            ("contact_histo", r"$\theta$ (contact normal vs +z)", "contact normals"),
-            ("orient_histo", r"$\theta$ (long axis a vs +z)", "long axes")):
-        th, p, frac = read_histo(os.path.join(out, name + ".dat"))
-        fig, ax = plt.subplots(figsize=(5.0, 3.6))
-        ax.plot(th, p, "o-", label="deposit")
-        ax.axhline(1.0 / (4.0 * math.pi), color="gray", ls="--", label=r"isotropic $1/4\pi$")
-        ax.set_xlim(0, math.pi)
-        ax.set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi])
-        ax.set_xticklabels(["0", r"$\pi/4$", r"$\pi/2$", r"$3\pi/4$", r"$\pi$"])
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel(r"$P(\Omega(\theta))$")
-        ax.set_title("%s: %s" % (what, title), fontsize=9)
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        png = os.path.join(out, name + ".png")
-        fig.savefig(png, dpi=120)
-        plt.close(fig)
-        written.append(png)
-    return written
 
 
 # what a run is: stored in its folder, so that --resume continues the same deposit
@@ -415,31 +372,10 @@ def main(argv=None):
     st = settings
     title = r"$\eta$=%g $\zeta$=%g $\delta_r$=%g N=%d" % (st["eta"], st["zeta"], st["dr"], st["N"])
     if not args.no_plots:
-        plot_histograms(out, title)
-        plot_profile(out, title, pk)
+        deposit_report.plot_run(out, title, pk, read_histo)
 
-    print("\ndeposit_run: N %d  eta %g  zeta %g  delta_r %g  (%d ranks, %.0f s, %d steps)"
-          % (st["N"], st["eta"], st["zeta"], st["dr"], args.np, wall, int(pk.get("steps", 0))))
-    print("  volume fraction phi = %.4f   (slab z in [%.3f, %.3f], %d particles)"
-          % (pk["phi"], pk["zlo"], pk["zhi"], int(pk["Nslab"])))
-    print("  coordination number Z = %.3f   without rattlers %.3f (%d rattlers)"
-          % (pk["Z"], pk["Z_no_rattlers"], int(pk["rattlers"])))
-    if pk.get("at_rest", 1) == 0:
-        print("  WARNING: the deposit is NOT at rest (maxchunks ran out): phi and Z are of a "
-              "moving packing; run it again with a larger --var maxchunks (it starts anew)")
-    print("  files in %s:" % out)
-    notes = {"log.lammps": "LAMMPS log", "screen.txt": "LAMMPS screen output",
-             SETTINGS_FILE: "the run's settings (for --resume)",
-             "packing.dat": "phi, Z and more as 'key value'",
-             "contact_histo.dat": "contact-normal histogram (theta, P(Omega), fraction)",
-             "orient_histo.dat": "long-axis histogram (theta, P(Omega), fraction)",
-             "contact_histo.png": "plot", "orient_histo.png": "plot",
-             "profile.dat": "solid fraction phi(z) per bin: z, phi, solid volume, centres",
-             "profile.png": "plot of phi(z) with the slab",
-             "deposit.dump": "OVITO dump: semi-axes (radii) and quaternion w,i,j,k",
-             "deposit.png": "picture (dump image)"}
-    for name in sorted(os.listdir(out)):
-        print("    %-18s %s" % (name, notes.get(name, "")))
+    deposit_report.print_summary(out, settings, pk, args.np, wall,
+                                 {SETTINGS_FILE: "the run's settings (for --resume)"})
     return pk
 
 

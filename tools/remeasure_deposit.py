@@ -9,9 +9,13 @@ the dump back as a LAMMPS data file and runs in.deposit in its `measure` mode: n
 same slab and histogram computes and the same result files as a deposit that ends now. So a
 change of the measurement reaches deposits that were poured before it without pouring them
 again. Contacts are the overlaps of the positions; the law does not enter the measurement.
+The force measures are not measured again: the dump holds neither the tangential history nor
+the velocities, so the measure mode writes no force keys (sigma_*, K0, mean_normal_force,
+fabric_anisotropy_force, a_n, a_f) and no contact_force_histo.dat or force_histo.dat.
 
 The new packing.dat keeps the keys of the old one that in.deposit does not write (the
-runner's wall_seconds, np, resumed_from) and says `remeasured 1`. In place, the first
+runner's wall_seconds, np, resumed_from, and the force keys, which stay those measured on the
+run's own slab) and says `remeasured 1`. In place, the first
 measurement stays as packing.dat.orig (and the histograms' .orig). --into: write the three
 files to these folders instead (one per RUN_DIR), e.g. a study's results folder. Dumps written
 before 1 Dec 2026 evening hold 6 digits, so their deposits come back to about 1e-5; newer ones

@@ -26,8 +26,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_histo, read_packing  # noqa: E402
 
 KEYS = ["eta", "zeta", "delta_r", "N", "law"]
+# the force measures (K0 ... a_f) are nan for deposits whose packing.dat predates them
 QUANTITIES = ["phi", "Z", "Z_no_rattlers", "rattler_fraction", "fabric_anisotropy",
-              "nematic_S", "Qzz", "Nslab", "steps", "wall_seconds"]
+              "nematic_S", "Qzz", "Nslab", "steps", "wall_seconds", "K0",
+              "fabric_anisotropy_force", "a_n", "a_f"]
 HISTOGRAMS = {"contact_histo": "contact_mean.dat", "orient_histo": "orient_mean.dat"}
 
 

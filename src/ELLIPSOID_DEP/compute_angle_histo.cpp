@@ -4,19 +4,19 @@
 
    Global array, one row per bin of theta in [0, theta_max]:
      1 bin centre theta_k
-     2 P_k = c_k / (C dOmega_k),  dOmega_k = 2 pi (cos theta_k,lo - cos theta_k,hi),
-       C = sum of the counts c_k
-     3 c_k / C
+     2 P_k = w_k / (W dOmega_k),  dOmega_k = 2 pi (cos theta_k,lo - cos theta_k,hi),
+       w_k = the sum of the weights of the samples in bin k (their number when unweighted),
+       W = sum of the w_k
+     3 w_k / W
+     4 (value_column only) the mean value of the samples in bin k (0 when empty)
 ------------------------------------------------------------------------- */
 
 #include "compute_angle_histo.h"
-
 
 #include "atom.h"
 #include "error.h"
 #include "math_const.h"
 #include "memory.h"
-#include "modify.h"
 #include "update.h"
 
 #include <cmath>
@@ -29,16 +29,16 @@ using MathConst::MY_PI;
 
 ComputeAngleHisto::ComputeAngleHisto(LAMMPS *lmp, int narg, char **arg, const char *name_in,
                                      int nvalues_in, const char *const *colnames_in,
-                                     int nextra_in) :
+                                     int nextra_in, bool value_column_in) :
     Compute(lmp, narg, arg),
-    name(name_in), nvalues(nvalues_in), colnames(colnames_in), nextra(nextra_in), nbins(18),
-    theta_max(MY_PI), have_zlo(false), have_zhi(false), zlo_user(0.0), zhi_user(0.0),
-    slab_id(nullptr), slab_compute(nullptr), hist(nullptr), hist_all(nullptr)
+    name(name_in), nvalues(nvalues_in), colnames(colnames_in), nextra(nextra_in),
+    value_column(value_column_in), nbins(18), theta_max(MY_PI), slab(lmp, name_in),
+    hist(nullptr), hist_all(nullptr)
 {
   if (!atom->ellipsoid_flag) error->all(FLERR, "Compute {} requires atom style ellipsoid", name);
 
   array_flag = 1;
-  size_array_cols = 3;
+  size_array_cols = value_column ? 4 : 3;
   extarray = 0;
   vector_flag = 1;
   size_vector = nvalues;
@@ -59,32 +59,23 @@ void ComputeAngleHisto::parse_args(int narg, char **arg)
     if (strcmp(arg[iarg], "bins") == 0) {
       nbins = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (nbins < 1) error->all(FLERR, "Compute {} bins must be >= 1", name);
-    } else if (strcmp(arg[iarg], "zlo") == 0) {
-      have_zlo = true;
-      zlo_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-    } else if (strcmp(arg[iarg], "zhi") == 0) {
-      have_zhi = true;
-      zhi_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-    } else if (strcmp(arg[iarg], "slab") == 0) {
-      delete[] slab_id;
-      slab_id = utils::strdup(arg[iarg + 1]);
-    } else if (!parse_keyword(arg[iarg], arg[iarg + 1]))
+      // the sums (3 per bin) are reduced with one MPI call, whose count is an int
+      if (nbins > (MAXSMALLINT - 64) / 3) error->all(FLERR, "Compute {} bins is too large", name);
+    } else if (!slab.parse(arg[iarg], arg[iarg + 1]) && !parse_keyword(arg[iarg], arg[iarg + 1]))
       error->all(FLERR, "Unknown compute {} keyword: {}", name, arg[iarg]);
     iarg += 2;
   }
-  if (slab_id && (have_zlo || have_zhi))
-    error->all(FLERR, "Compute {}: use either 'slab' or 'zlo'/'zhi'", name);
-  if (have_zlo && have_zhi && !(zhi_user > zlo_user))
-    error->all(FLERR, "Compute {} needs zhi > zlo", name);
+  slab.check();
 
   size_array_rows = nbins;
-  memory->create(array, nbins, 3, fmt::format("{}:array", name).c_str());
-  hist = new double[nbins + NMOMENT + nextra];
-  hist_all = new double[nbins + NMOMENT + nextra];
+  memory->create(array, nbins, size_array_cols, fmt::format("{}:array", name).c_str());
+  const int nsums = 3 * nbins + NMOMENT + nextra;
+  hist = new double[nsums];
+  hist_all = new double[nsums];
   const double dtheta = theta_max / nbins;
   for (int k = 0; k < nbins; k++) {
     array[k][0] = (k + 0.5) * dtheta;
-    array[k][1] = array[k][2] = 0.0;
+    for (int c = 1; c < size_array_cols; c++) array[k][c] = 0.0;
   }
 }
 
@@ -96,20 +87,13 @@ ComputeAngleHisto::~ComputeAngleHisto()
   memory->destroy(array);
   delete[] hist;
   delete[] hist_all;
-  delete[] slab_id;
 }
 
 /* ---------------------------------------------------------------------- */
 
 void ComputeAngleHisto::init()
 {
-  if (slab_id) {
-    slab_compute = modify->get_compute_by_id(slab_id);
-    if (!slab_compute) error->all(FLERR, "Compute {}: no compute with ID {}", name, slab_id);
-    if (strcmp(slab_compute->style, "packing/ellipsoid") != 0 || !slab_compute->vector_flag ||
-        slab_compute->size_vector < SLAB_ZHI_ELEMENT)
-      error->all(FLERR, "Compute {}: slab compute {} is not packing/ellipsoid", name, slab_id);
-  }
+  slab.init();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -143,15 +127,24 @@ int ComputeAngleHisto::bin_of(double cz) const
   return k >= nbins ? nbins - 1 : (k < 0 ? 0 : k);
 }
 
-void ComputeAngleHisto::add_moment(const double *u)
+void ComputeAngleHisto::bin(double cz, double w, double v)
 {
-  double *m = hist + nbins;
-  m[0] += u[0] * u[0];
-  m[1] += u[1] * u[1];
-  m[2] += u[2] * u[2];
-  m[3] += u[0] * u[1];
-  m[4] += u[0] * u[2];
-  m[5] += u[1] * u[2];
+  const int k = bin_of(cz);
+  hist[k] += w;
+  hist[nbins + k] += 1.0;
+  hist[2 * nbins + k] += v;
+}
+
+void ComputeAngleHisto::add_moment(const double *u, double w)
+{
+  double *m = hist + 3 * nbins;
+  m[0] += w * u[0] * u[0];
+  m[1] += w * u[1] * u[1];
+  m[2] += w * u[2] * u[2];
+  m[3] += w * u[0] * u[1];
+  m[4] += w * u[0] * u[2];
+  m[5] += w * u[1] * u[2];
+  m[WEIGHT_SUM] += w;
   m[SAMPLE_COUNT] += 1.0;
 }
 
@@ -160,35 +153,25 @@ void ComputeAngleHisto::add_moment(const double *u)
 void ComputeAngleHisto::tally()
 {
   prepare();
+  const SlabOption::Bounds bounds = slab.bounds();
 
-  double zlo = -HUGE_VAL, zhi = HUGE_VAL;
-  if (have_zlo) zlo = zlo_user;
-  if (have_zhi) zhi = zhi_user;
-  if (slab_compute) {
-    if (!(slab_compute->invoked_flag & Compute::INVOKED_VECTOR) ||
-        slab_compute->invoked_vector != update->ntimestep) {
-      slab_compute->compute_vector();
-      slab_compute->invoked_flag |= Compute::INVOKED_VECTOR;
-    }
-    zlo = slab_compute->vector[SLAB_ZLO_ELEMENT - 1];
-    zhi = slab_compute->vector[SLAB_ZHI_ELEMENT - 1];
-  }
-  const bool use_slab = have_zlo || have_zhi || slab_compute;
-
-  const int nsums = nbins + NMOMENT + nextra;
+  const int nsums = 3 * nbins + NMOMENT + nextra;
   for (int k = 0; k < nsums; k++) hist[k] = 0.0;
-  accumulate(zlo, zhi, use_slab);
+  accumulate(bounds);
   MPI_Allreduce(hist, hist_all, nsums, MPI_DOUBLE, MPI_SUM, world);
 
-  finish_vector(hist_all + nbins, hist_all[nbins + SAMPLE_COUNT], hist_all + nbins + NMOMENT);
+  const double *moments = hist_all + 3 * nbins;
+  finish_vector(moments, moments[WEIGHT_SUM], moments[SAMPLE_COUNT], moments + NMOMENT);
 
+  const double *weights = hist_all, *counts = hist_all + nbins, *values = hist_all + 2 * nbins;
   double total = 0.0;
-  for (int k = 0; k < nbins; k++) total += hist_all[k];
+  for (int k = 0; k < nbins; k++) total += weights[k];
   const double dtheta = theta_max / nbins;
   for (int k = 0; k < nbins; k++) {
     const double domega = 2.0 * MY_PI * (std::cos(k * dtheta) - std::cos((k + 1) * dtheta));
     array[k][0] = (k + 0.5) * dtheta;
-    array[k][1] = total > 0.0 ? hist_all[k] / (total * domega) : 0.0;
-    array[k][2] = total > 0.0 ? hist_all[k] / total : 0.0;
+    array[k][1] = total > 0.0 ? weights[k] / (total * domega) : 0.0;
+    array[k][2] = total > 0.0 ? weights[k] / total : 0.0;
+    if (value_column) array[k][3] = counts[k] > 0.0 ? values[k] / counts[k] : 0.0;
   }
 }

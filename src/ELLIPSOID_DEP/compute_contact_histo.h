@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: compute contact/histo
    Distribution of the angle between contact normals and +z, per unit solid angle, from the
-   pair's real contacts, plus the fabric tensor of the contact normals.
+   pair's real contacts, plus the fabric tensor of the contact normals; with weight force
+   both weighted by the contacts' normal forces.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_COMPUTE_CONTACT_HISTO_H
@@ -23,12 +24,14 @@ class ComputeContactHisto : public ComputeAngleHisto {
  protected:
   bool parse_keyword(const char *, const char *) override;
   void prepare() override;
-  void accumulate(double zlo, double zhi, bool use_slab) override;
-  void finish_vector(const double *moments, double count, const double *extra) override;
+  void accumulate(const SlabOption::Bounds &slab) override;
+  void finish_vector(const double *moments, double weight, double count,
+                     const double *extra) override;
 
  private:
   const class ContactList *contacts;
-  int select_center;    // 0: contact point in slab, 1: the side's particle centre
+  bool select_center;    // false: contact point in slab, true: the side's particle centre
+  bool weight_force;     // samples weighted by |f_n| (weight force) or 1 (weight none)
 };
 
 }    // namespace LAMMPS_NS

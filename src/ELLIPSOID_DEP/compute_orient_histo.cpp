@@ -118,7 +118,7 @@ void ComputeOrientHisto::chosen_axis(const EllipsoidAtoms &ellipsoids, int i, do
 
 /* ---------------------------------------------------------------------- */
 
-void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
+void ComputeOrientHisto::accumulate(const SlabOption::Bounds &slab)
 {
   const EllipsoidAtoms ellipsoids(atom);
   if (!ellipsoids.avec) error->all(FLERR, "Compute orient/histo requires atom style ellipsoid");
@@ -129,7 +129,7 @@ void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    if (!(x[i][2] >= zlo && x[i][2] < zhi)) continue;
+    if (!(x[i][2] >= slab.zlo && x[i][2] < slab.zhi)) continue;
     if (!ellipsoids.has_shape(i)) {
       no_shape[0] += 1.0;
       continue;
@@ -148,7 +148,8 @@ void ComputeOrientHisto::accumulate(double zlo, double zhi, bool)
 
 /* ---------------------------------------------------------------------- */
 
-void ComputeOrientHisto::finish_vector(const double *moments, double npart, const double *extra)
+void ComputeOrientHisto::finish_vector(const double *moments, double, double npart,
+                                       const double *extra)
 {
   if (extra[0] > 0.0) error->all(FLERR, MISSING_SHAPE);
 

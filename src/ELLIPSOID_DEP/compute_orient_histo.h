@@ -26,8 +26,9 @@ class ComputeOrientHisto : public ComputeAngleHisto {
 
  protected:
   bool parse_keyword(const char *, const char *) override;
-  void accumulate(double zlo, double zhi, bool use_slab) override;
-  void finish_vector(const double *moments, double count, const double *extra) override;
+  void accumulate(const SlabOption::Bounds &slab) override;
+  void finish_vector(const double *moments, double weight, double count,
+                     const double *extra) override;
 
  private:
   int which_axis;    // 0 longest, 1 middle, 2 shortest semi-axis

@@ -8,6 +8,7 @@
 #include "version.h"
 
 #include "compute_contact_histo.h"
+#include "compute_force_histo.h"
 #include "compute_orient_histo.h"
 #include "compute_packing_ellipsoid.h"
 #include "compute_packing_profile.h"
@@ -66,6 +67,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "compute", "contact/histo",
                  "histogram of contact-normal angles with +z",
                  (void *) &create_with_args<ComputeContactHisto, Compute>);
+  register_style(reg, lmp, handle, "compute", "force/histo",
+                 "distribution of the normal contact forces, P(f/<f>)",
+                 (void *) &create_with_args<ComputeForceHisto, Compute>);
   register_style(reg, lmp, handle, "compute", "orient/histo",
                  "histogram of principal-axis angles with +z",
                  (void *) &create_with_args<ComputeOrientHisto, Compute>);

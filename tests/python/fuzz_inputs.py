@@ -2,7 +2,7 @@
 
 Two valid base inputs (lj units with *hertz*, si units with named materials) use every style
 of the package (pair granular/ellipsoid, fix wall/gran/ellipsoid, fix pour/ellipsoid, compute
-packing/ellipsoid, contact/histo, orient/histo, packing/profile). A mutant changes one of
+packing/ellipsoid, contact/histo, force/histo, orient/histo, packing/profile). A mutant changes one of
 the package's command lines by one to three operations: replace, drop, duplicate, swap or
 insert tokens, or truncate the line; replacements are
 special numbers (nan, inf, 1e308, -0, 2^31, ...), scaled numbers, or words of the styles'
@@ -68,7 +68,9 @@ fix i all nve/asphere
 @compute cz all contact/histo bins 6 zlo 0.0 zhi 2.0 select point
 @compute oh all orient/histo axis short bins 9 fold yes zlo 0 zhi 3
 @compute pp all packing/profile 0.5 zlo 0.0 zhi 3.0
-thermo_style custom step atoms ke c_pk[1] c_pk[3] c_pe[1] c_ch[1] c_cz[7] c_oh[1] c_pp[1][2]
+@compute cw all contact/histo bins 5 weight force
+@compute fh all force/histo bins 6 max 4 slab pk select center
+thermo_style custom step atoms ke c_pk[1] c_pk[3] c_pe[1] c_ch[1] c_cz[7] c_oh[1] c_pp[1][2] c_cw[7] c_cw[2][4] c_fh[1] c_fh[4] c_fh[2][2]
 thermo_modify lost error
 thermo 50
 timestep 1e-3
@@ -128,7 +130,8 @@ beta shape dshape density vol rate vel every tolerance iterations correction pla
 preset accurate fast yes no bins zlo zhi slab select point center axis long middle short fold
 auto bottom top rattler floor surface max columns EDGE glass steel unobtainium * 1*2 2* ins
 box pk pe pa ch p w all granular/ellipsoid pour/ellipsoid wall/gran/ellipsoid
-packing/ellipsoid contact/histo orient/histo packing/profile pp""".split()
+packing/ellipsoid contact/histo orient/histo packing/profile pp weight force none force/histo
+cw fh""".split()
 
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 

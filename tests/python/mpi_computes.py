@@ -1,4 +1,5 @@
-"""Same results for compute packing/ellipsoid, contact/histo, orient/histo on 1 and 2 MPI ranks.
+"""Same results for compute packing/ellipsoid, contact/histo, force/histo, orient/histo on 1 and 2
+MPI ranks.
 
 Run as `mpirun -np 2 python3 mpi_computes.py`; exits non-zero on failure.
 
@@ -32,9 +33,13 @@ region lowz block INF INF INF INF INF 1.6
 group low region lowz
 compute pg low packing/ellipsoid EDGE EDGE
 compute cg low contact/histo bins 8
+compute cw all contact/histo bins 12 weight force
+compute cf all contact/histo bins 8 slab pa select center weight force
+compute fh all force/histo bins 10 max 4
+compute fs low force/histo bins 6 max 3 slab pa select center
 """
-VECTORS = ["pk", "pr", "pa", "pc", "ch", "cs", "cz", "ol", "os", "pg", "cg"]
-ARRAYS = ["ch", "cs", "cz", "ol", "os", "cg"]
+VECTORS = ["pk", "pr", "pa", "pc", "ch", "cs", "cz", "ol", "os", "pg", "cg", "cw", "cf", "fh", "fs"]
+ARRAYS = ["ch", "cs", "cz", "ol", "os", "cg", "cw", "cf", "fh", "fs"]
 
 
 def configurations():

@@ -386,7 +386,8 @@ group two type 2
 """
 
 CONTACT_COMPUTES = [("packing/ellipsoid EDGE EDGE", "Compute packing/ellipsoid"),
-                    ("contact/histo", "Compute contact/histo")]
+                    ("contact/histo", "Compute contact/histo"),
+                    ("force/histo", "Compute force/histo")]
 
 
 @pytest.mark.parametrize("hybrid", ["hybrid", "hybrid/overlay"])

@@ -1,8 +1,10 @@
 """The default deposit end to end at a tiny size: tools/deposit_run.py on 2 MPI ranks (split
 in x and y) pours 40 particles of examples/deposit/in.deposit, stops at rest and writes its
-files: the log, packing.dat, the histograms, the profile, the dump (semi-axes and quaternions) and the
-PNGs (dump image; matplotlib: histograms and the phi(z) profile). The rest criterion is 1e-2 m g d per particle (the
+files: the log, packing.dat (with the force measures), the histograms (also force-weighted, and
+P(f/<f>)), the profile, the dump (semi-axes and quaternions) and the PNGs (dump image; matplotlib:
+histograms, P(f/<f>) and the phi(z) profile). The rest criterion is 1e-2 m g d per particle (the
 tiny study's), which the checks here do not depend on."""
+import math
 import os
 
 import deposit_run
@@ -16,9 +18,10 @@ def test_default_deposit(tmp_path):
                 "--ketol", "1e-2", "--out", str(out), "--quiet"], str(tmp_path), 600)
     assert "volume fraction phi" in text
     for name in ("log.lammps", "packing.dat", "contact_histo.dat", "orient_histo.dat",
-                 "profile.dat", "deposit.dump"):
+                 "contact_force_histo.dat", "force_histo.dat", "profile.dat", "deposit.dump"):
         assert (out / name).stat().st_size > 0, name
-    for name in ("deposit.png", "contact_histo.png", "orient_histo.png", "profile.png"):
+    for name in ("deposit.png", "contact_histo.png", "orient_histo.png", "force_histo.png",
+                 "profile.png"):
         assert_image(str(out / name))
     pk = {}
     for line in open(out / "packing.dat"):
@@ -28,6 +31,12 @@ def test_default_deposit(tmp_path):
     # 40 particles make a deposit about one diameter high: the measuring slab (one diameter
     # above the ground, two below the surface) may be empty, so only sanity is checked
     assert 0.0 <= float(pk["phi"]) < 0.8
+    for key in ("sigma_xx", "sigma_yy", "sigma_zz", "K0", "mean_normal_force",
+                "fabric_anisotropy_force", "a_n", "a_f"):
+        assert math.isfinite(float(pk[key])), key
+    theta, p_force, fraction, mean_force = deposit_run.read_histo(
+        str(out / "contact_force_histo.dat"), 4)
+    assert len(theta) == 18 and all(f >= 0.0 for f in mean_force)
     assert int(float(pk["steps"])) > 0
     # the phi(z) profile of compute packing/profile: fractions in [0, 1], some solid
     z, phi, volume = deposit_run.read_histo(str(out / "profile.dat"))

@@ -182,7 +182,8 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
         (d / "packing.dat").write_text(
             "N 500\neta 1.2\nzeta 1.4\ndelta_r 0.3\nseed %d\nsteps 1000\nphi %g\nZ %g\n"
             "Z_no_rattlers %g\nNslab 200\nrattlers %d\nfabric_anisotropy 0.1\nnematic_S 0.2\n"
-            "Qzz -0.1\nwall_seconds 10\n" % (seed, phi, z, z, seed))
+            "Qzz -0.1\nwall_seconds 10\n" % (seed, phi, z, z, seed)
+            + ("K0 %g\n" % (0.5 + 0.1 * seed) if seed > 1 else ""))    # one without forces
         for h in ("contact_histo", "orient_histo"):
             (d / (h + ".dat")).write_text("# t\n1000 2\n1 0.5 %g 0.5\n2 1.5 %g 0.5\n"
                                           % (seed, 2 * seed))
@@ -196,6 +197,9 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
     assert abs(float(row["phi_sem"]) - sem(phis)) < 1e-9
     assert abs(float(row["Z_sem"]) - sem(zs)) < 1e-9
     assert abs(float(row["rattler_fraction_mean"]) - 2 / 200) < 1e-12
+    assert math.isnan(float(row["K0_mean"]))    # a deposit without the force measures
+    deposits = list(csv.DictReader(open(res / "deposits.csv")))
+    assert [float(d["K0"]) for d in deposits[1:]] == [0.5 + 0.1 * 2, 0.5 + 0.1 * 3]
     hist = [list(map(float, line.split())) for line in open(res / row["contact_histo"])
             if not line.startswith("#")]
     assert hist[0][:2] == [0.5, 2.0] and abs(hist[0][2] - sem([1, 2, 3])) < 1e-6
