@@ -31,7 +31,7 @@ int FixWallGranEllipsoid::parse_motion(int iarg, int narg, char **arg)
   if (iarg + nvalues >= narg)
     utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
   if (motion.kind != Motion::Kind::None)
-    error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: give one of wiggle and shear, once");
+    error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: give one of wiggle, shear and servo, once");
   const std::string dim = arg[iarg + 1];
   if (dim != "x" && dim != "y" && dim != "z")
     error->all(FLERR, iarg + 1,

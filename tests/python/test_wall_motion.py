@@ -126,7 +126,15 @@ def test_shearing_floor_drags_a_resting_sphere(vshear):
     ("zplane 0 NULL wiggle q 0.1 1", "dimension must be x, y or z"),
     ("zplane 0 NULL wiggle z 0.1 0", "period must be > 0"),
     ("zplane 0 NULL shear z 0.5", "shear along z"),
-    ("zplane 0 NULL shear x 0.5 wiggle z 0.1 1", "one of wiggle and shear"),
+    ("zplane 0 NULL shear x 0.5 wiggle z 0.1 1", "one of wiggle, shear and servo"),
+    # the servo (test_wall_servo.py)
+    ("zplane NULL 1.3 servo force -1 gain 0.1 vmax 1", "target force must be > 0"),
+    ("zplane NULL 1.3 servo force 1 gain 0 vmax 1", "gain must be > 0"),
+    ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 0", "vmax must be > 0"),
+    ("zplane NULL 1.3 servo pressure 1 gain 0.1 vmax 1", "expected force or stress"),
+    ("zplane NULL 1.3 servo force 1 vmax 0.1 gain 1", "expected 'servo force VALUE gain G vmax V'"),
+    ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 1 wiggle z 0.1 1", "one of wiggle, shear and servo"),
+    ("zplane 0 1.3 servo force 1 gain 0.1 vmax 1", "servo moves one wall"),
 ])
 def test_bad_motion_is_refused(args, pattern):
     lmp = new_lammps()

