@@ -108,13 +108,14 @@ ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
   // a warm start can lie in the basin of a spurious local minimum of d, far deeper than the
   // contact (a start in the wrong hemisphere: about a body's length); a deep warm result is
   // checked against the cold start, and the shallower minimum is the contact (or the gap)
+  // (a cold start that reaches the same minimum, equal to round-off, leaves the warm result)
   bool replaced = false;
+  const double thinnest = std::min(a.semi_axes.minCoeff(), b.semi_axes.minCoeff());
   if (have_n && !spheres && g.status != Status::Degenerate &&
-      g.overlap > CHECKED_OVERLAP_FRACTION *
-              std::min(a.semi_axes.minCoeff(), b.semi_axes.minCoeff())) {
+      g.overlap > CHECKED_OVERLAP_FRACTION * thinnest) {
     ContactGeometry cold = valid_ellipsoid_contact(a, b, settings.contact, nullptr);
     counters.iterations += cold.iterations;
-    if (cold.status != Status::Degenerate && cold.overlap < g.overlap) {
+    if (cold.status != Status::Degenerate && cold.overlap < g.overlap - SAME_MINIMUM * thinnest) {
       ++counters.spurious_minima;
       g = cold;
       replaced = true;

@@ -43,6 +43,9 @@ struct PipelineSettings {
 // can reach a spurious local minimum of d, which would make a false contact (of a disjoint
 // pair) or a far too deep one
 inline constexpr double CHECKED_OVERLAP_FRACTION = 0.5;
+// two minima of d closer than this fraction of the thinner semi-axis are the same one (the
+// iteration meets its tolerance far below it; a spurious minimum is about a body's length off)
+inline constexpr double SAME_MINIMUM = 1e-9;
 
 struct PipelineCounters {
   long long pairs = 0;               // pairs evaluated

@@ -620,7 +620,9 @@ TEST(Pipeline, FastModeAcceptedStartStoresNoStep)
       const ContactGeometry g = evaluate_pair(c.a, b, fast, cache, cnt);
       in_contact_throughout = in_contact_throughout && in_contact(g);
       if (k == 1) held = g.normal;
-      if (k > 1) EXPECT_LT((g.normal - held).norm(), 1e-12) << "still evaluation " << k;
+      if (k > 1) {
+        EXPECT_LT((g.normal - held).norm(), 1e-12) << "still evaluation " << k;
+      }
     }
     if (!in_contact_throughout) continue;
     ++checked;
