@@ -106,6 +106,11 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
       iarg += parse_servo(iarg, narg, arg);
       continue;
     }
+    if (word == "contacts") {    // fix wall/gran's per-atom contact array
+      peratom_flag = 1;
+      iarg += 1;
+      continue;
+    }
     if (word == "impact_velocity") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
       impact_velocity = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -124,8 +129,8 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
     if (dim < 0)
       error->all(FLERR, iarg,
                  "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane, zplane, wall_material, wiggle, shear, servo, impact_velocity, "
-                 "or a force-law word)",
+                 "yplane, zplane, wall_material, wiggle, shear, servo, contacts, "
+                 "impact_velocity, or a force-law word)",
                  word);
     if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
     seen[dim] = true;
@@ -189,9 +194,15 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   size_history = law.history_size() * nwalls;
   restart_peratom = size_history > 0 ? 1 : 0;
   maxexchange = size_history;
-  if (size_history) {
+  if (peratom_flag) {
+    size_peratom_cols = CONTACT_COLUMNS;
+    peratom_freq = 1;
+  }
+  if (size_history || peratom_flag) {
     grow_arrays(atom->nmax);
     atom->add_callback(Atom::GROW);
+  }
+  if (size_history) {
     atom->add_callback(Atom::RESTART);
     for (int i = 0; i < atom->nlocal; i++)
       for (int m = 0; m < size_history; m++) history_one[i][m] = 0.0;
@@ -202,11 +213,10 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
 
 FixWallGranEllipsoid::~FixWallGranEllipsoid()
 {
-  if (size_history) {
-    atom->delete_callback(id, Atom::GROW);
-    atom->delete_callback(id, Atom::RESTART);
-  }
+  if (size_history || peratom_flag) atom->delete_callback(id, Atom::GROW);
+  if (size_history) atom->delete_callback(id, Atom::RESTART);
   memory->destroy(history_one);
+  memory->destroy(array_atom);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -312,6 +322,9 @@ void FixWallGranEllipsoid::wall_forces()
   const double dt = update->dt;
   const int nwalls = static_cast<int>(walls.size());
 
+  if (peratom_flag)
+    for (int i = 0; i < nlocal; i++)
+      for (int m = 0; m < CONTACT_COLUMNS; m++) array_atom[i][m] = 0.0;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     // an atom inserted during the run without a shape (fix deposit): the walls would let it go
@@ -350,6 +363,7 @@ void FixWallGranEllipsoid::wall_forces()
         torque[i][d] += result.torque_i[d];
         wall_force[3 * k + d] -= result.force_i[d];
       }
+      if (peratom_flag) record_contact(i, result, g);
     }
   }
   // the servo's measure for the next step: the particles' push on its wall, along -n
@@ -386,5 +400,20 @@ double FixWallGranEllipsoid::compute_vector(int n)
 
 double FixWallGranEllipsoid::memory_usage()
 {
-  return static_cast<double>(atom->nmax) * size_history * sizeof(double);
+  return static_cast<double>(atom->nmax) * (size_history + (peratom_flag ? CONTACT_COLUMNS : 0)) *
+      sizeof(double);
+}
+
+// the contacts array of fix wall/gran: walls touching (count), the force the walls exert,
+// the point on the (last) wall, the contact's R* (an ellipsoid has no one radius)
+void FixWallGranEllipsoid::record_contact(int i, const ContactForce &result,
+                                          const ContactGeometry &g)
+{
+  double *row = array_atom[i];
+  row[0] += 1.0;
+  for (int d = 0; d < 3; d++) {
+    row[1 + d] += result.force_i[d];
+    row[4 + d] = g.point_b[d];
+  }
+  row[7] = g.effective_radius;
 }

@@ -67,6 +67,10 @@ class FixWallGranEllipsoid : public Fix {
   int parse_motion(int iarg, int narg, char **arg);
   int parse_servo(int iarg, int narg, char **arg);
   void move_walls();
+  // the contacts keyword: fix wall/gran's per-atom array of 8 columns
+  static constexpr int CONTACT_COLUMNS = 8;
+  void record_contact(int i, const EllipsoidDep::ContactForce &result,
+                      const EllipsoidDep::ContactGeometry &g);
   double servo_target() const;    // in force units
   EllipsoidDep::ForceLaw law;
   int size_history;        // the law's history size times the number of walls

