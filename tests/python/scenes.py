@@ -54,6 +54,26 @@ fix w all wall/gran/ellipsoid {wall}
 """
 
 
+def spheres_in_box(style, box, positions, radius, density=1.0):
+    """Spheres of one radius at the given positions in a box periodic in x and y (z fixed):
+    LAMMPS's atom_style sphere (style 'sphere') or this package's ellipsoids (any other)."""
+    size = (f"diameter {2 * radius}" if style == "sphere"
+            else f"shape {2 * radius} {2 * radius} {2 * radius}")
+    atoms = "\n".join("create_atoms 1 single {} {} {}".format(*p) for p in positions)
+    return f"""
+units lj
+atom_style {style}
+atom_modify map array
+boundary p p f
+comm_modify vel yes
+region box block 0 {box[0]} 0 {box[1]} 0 {box[2]}
+create_box 1 box
+{atoms}
+set type 1 {size}
+set type 1 density {density}
+"""
+
+
 def particle_box(style, lo, hi, ntypes=1, boundary="p p p"):
     """The opening of a granular input: lj units, the atom style, an atom map (for setting
     values by ID), ghost velocities, and a cubic box [lo, hi]^3 of ntypes atom types."""

@@ -14,6 +14,7 @@ import math
 import numpy as np
 import pytest
 
+import scenes
 from conftest import new_lammps
 
 E, NU, REST = 1.0e5, 0.3, 0.8
@@ -25,22 +26,8 @@ def sphere_on_floor(style, wall, motion, z0=0.62, vz=-0.5):
     """One sphere above the floor z = 0, falling; LAMMPS's sphere style and fix wall/gran
     (style 'sphere'), or this package (style 'ellipsoid')."""
     lmp = new_lammps()
+    lmp.commands_string(scenes.spheres_in_box(style, (4, 4, 6), [(2.0, 2.0, z0)], RADIUS, DENSITY))
     lmp.commands_string(f"""
-        units lj
-        atom_style {style}
-        atom_modify map array
-        boundary p p f
-        comm_modify vel yes
-        region box block 0 4 0 4 0 6
-        create_box 1 box
-        create_atoms 1 single 2.0 2.0 {z0}
-        """)
-    if style == "sphere":
-        lmp.command(f"set type 1 diameter {2 * RADIUS}")
-    else:
-        lmp.command(f"set type 1 shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}")
-    lmp.commands_string(f"""
-        set type 1 density {DENSITY}
         velocity all set 0.0 0.0 {vz}
         fix g all gravity 1.0 vector 0 0 -1
         {wall} zplane 0.0 NULL {motion}
@@ -157,17 +144,10 @@ def test_contacts_array_as_fix_wall_gran():
     centre and R* = r; the second row is zero. The fix's own vector (the force on the wall)
     is the negated force."""
     lmp = new_lammps()
+    lmp.commands_string(scenes.spheres_in_box("ellipsoid", (4, 4, 6),
+                                              [(1.2, 1.7, RADIUS - 1e-3), (3.0, 3.0, 2.0)],
+                                              RADIUS, DENSITY))
     lmp.commands_string(f"""
-        units lj
-        atom_style ellipsoid
-        atom_modify map array
-        boundary p p f
-        region box block 0 4 0 4 0 6
-        create_box 1 box
-        create_atoms 1 single 1.2 1.7 {RADIUS - 1e-3}
-        create_atoms 1 single 3.0 3.0 2.0
-        set type 1 shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}
-        set type 1 density {DENSITY}
         fix w all wall/gran/ellipsoid hertz/material {E} {NU} {REST} zplane 0.0 NULL contacts
         run 0
         """)

@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pytest
 
+import scenes
 from conftest import new_lammps
 
 E, NU, REST = 1.0e5, 0.3, 0.5
@@ -25,17 +26,9 @@ LAW = f"hertz/material {E} {NU} {REST}"
 
 def sphere_under_lid(servo, lid=1.05, extra=""):
     lmp = new_lammps()
+    lmp.commands_string(scenes.spheres_in_box("ellipsoid", (2, 2, 3), [(1.0, 1.0, RADIUS)],
+                                              RADIUS))
     lmp.commands_string(f"""
-        units lj
-        atom_style ellipsoid
-        atom_modify map array
-        boundary p p f
-        comm_modify vel yes
-        region box block 0 2 0 2 0 3
-        create_box 1 box
-        create_atoms 1 single 1.0 1.0 {RADIUS}
-        set type 1 shape {2 * RADIUS} {2 * RADIUS} {2 * RADIUS}
-        set type 1 density 1.0
         fix floor all wall/gran/ellipsoid {LAW} zplane 0.0 NULL
         fix lid all wall/gran/ellipsoid {LAW} zplane NULL {lid} {servo} {extra}
         fix i all nve/ellipsoid
