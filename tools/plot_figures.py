@@ -23,6 +23,8 @@ folder) PNG files:
                           at each delta_r                                             (Fig. 6b)
   fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes        (Fig. 7)
   fig_density_laws.png    phi along eta = zeta at the lowest delta_r, one curve per law
+  fig_forces.png          the contact forces along eta = zeta: anisotropies and K0 against
+                          a/c, force by direction, P(f/<f>) (tools/plot_forces.py)
 A figure whose data are missing is skipped with a note.
 """
 import argparse
@@ -41,6 +43,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_forces import figure as forces_figure  # noqa: E402
 from plot_maps import groups_text, map_figure  # noqa: E402
 from plot_sizes import figure as sizes_figure  # noqa: E402
 from study_claims import Selection, load_deposits  # noqa: E402
@@ -257,6 +260,7 @@ def main(argv=None):
     written.append(density_lines(sels, law, dr0, claims, out))
     written += shape_figures(sels, law, dr0, claims, out, tag)
     written.append(density_laws(sels, dr0, out))
+    written.append(forces_figure(claims, base.deposits, os.path.join(out, "fig_forces.png"), tag))
     for sizes in sorted(glob.glob(os.path.join(results, "sizes_*.csv")))[:1]:
         written.append(sizes_figure(sizes, os.path.join(out, "fig_sizes.png"))[0])
     written = [w for w in written if w]

@@ -41,6 +41,8 @@ above a/c = 4; `errors` lists every group's SD and degrees of freedom per quanti
   error; null with one seed);
 * `laws`: for each other tangential law and each delta_r it was run at: its diagonal
   maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings;
+* `forces`: the force measures a_n, a_f, a_n + a_f and K0 along the diagonal, their trends
+  against a/c and verdicts (tools/study_forces.py), over the deposits that have them;
 * `verdicts`: each claim's comparison with its significance and the seeds per point a
   3-sigma verdict needs (tools/study_verdicts.py, tools/study_histograms.py).
 """
@@ -57,6 +59,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_histo, read_packing  # noqa: E402
 from study_claims_md import markdown  # noqa: E402
 from study_stats import Pooled, line_maximum  # noqa: E402
+from study_forces import forces  # noqa: E402
 from study_verdicts import verdicts  # noqa: E402
 
 ISOTROPIC = 1.0 / (4.0 * math.pi)
@@ -332,6 +335,7 @@ def claims(results, law, n):
                                                                           Selection([]))),
                     "crossings": crossings(sel)}
                    for (dr, name), sel in selections.items() if name != law]
+    out["forces"] = forces(base.deposits)
     out["verdicts"] = verdicts(out, selections, law)
     return out
 

@@ -22,8 +22,9 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from study_claims import Selection, load_deposits  # noqa: E402
-from study_doc_claims import pm, table, verdicts_block  # noqa: E402
+from study_doc_claims import pm, table, verdicts_block, z_cell  # noqa: E402
 from study_doc_paper import claims_block  # noqa: E402
+from study_forces import MEASURES, NAMES  # noqa: E402
 from study_stats import Pooled  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -143,6 +144,24 @@ def map_block(data, q, digits):
     return table(["eta \\ zeta"] + ["%g" % z for z in grid], rows)
 
 
+def forces_block(data):
+    """the force measures along the diagonal and their trends (claims.json `forces`)"""
+    f = data.claims.get("forces")
+    if f is None:
+        return "No deposit of the diagonal has the force measures yet."
+    per_shape = [["%g" % r["eta"], "%g" % r["a/c"], "%d" % r["seeds"]]
+                 + [pm(r[q]["mean"], r[q]["se"], 3) for q in MEASURES] for r in f["per_shape"]]
+    trends = []
+    for q in MEASURES:
+        slope, end = f["trends"][q]["slope_per_unit_a/c"], f["trends"][q]["thinnest_minus_roundest"]
+        trends.append([NAMES[q], pm(slope["slope"], slope["se"], 4), z_cell(slope),
+                       slope["verdict"], pm(end["difference"], end["se"], 3), z_cell(end),
+                       end["verdict"]])
+    return (table(["eta = zeta", "a/c", "seeds", "a_n", "a_f", "a_n + a_f", "K0"], per_shape)
+            + "\n\n" + table(["measure", "slope per unit a/c", "significance", "verdict",
+                               "thinnest - roundest", "significance", "verdict"], trends))
+
+
 def porous_block(data):
     pores = data.pores((0.0, data.law))
     t = [json.load(open(os.path.join(d["folder"], "pores.json")))
@@ -172,7 +191,7 @@ def blocks(data):
             "lines": lines_block(data), "diagonal": diagonal_block(data),
             "map_phi": map_block(data, "phi", 4), "map_z": map_block(data, "Z", 2),
             "claims": claims_block(data), "verdicts": verdicts_block(data),
-            "porous": porous_block(data)}
+            "forces": forces_block(data), "porous": porous_block(data)}
 
 
 def render(text, generated):

@@ -183,6 +183,32 @@ def fabric_row(data):
             "spheres: flat or undecided (see the verdict table)"]
 
 
+def forces_row(data):
+    claim = ("abstract: the contact forces are increasingly preferred along the vertical as "
+             "the shape deviates from a sphere")
+    f = data.claims.get("forces")
+    if f is None:
+        return [claim, "not measured: no diagonal shape has two deposits with the force "
+                "measures", "undecided"]
+    t = f["trends"]
+    total, own = t["a_total"]["slope_per_unit_a/c"], t["a_f"]["slope_per_unit_a/c"]
+    first, last = f["per_shape"][0], f["per_shape"][-1]
+    seeds = sorted({r["seeds"] for r in f["per_shape"]})
+    return [claim,
+            "eta = zeta, %d deposits (%s seeds per shape): force-weighted anisotropy a_n + a_f "
+            "%s at %s, %s at %s, slope %s per unit a/c (%s); the forces' own part a_f: "
+            "slope %s (%s)"
+            % (f["deposits"], "-".join("%d" % k for k in (seeds[0], seeds[-1]))
+               if len(seeds) > 1 else "%d" % seeds[0],
+               pm(first["a_total"]["mean"], first["a_total"]["se"], 3),
+               shape((first["eta"], first["zeta"])),
+               pm(last["a_total"]["mean"], last["a_total"]["se"], 3),
+               shape((last["eta"], last["zeta"])), pm(total["slope"], total["se"], 4),
+               z_cell(total), pm(own["slope"], own["se"], 4), z_cell(own)),
+            "increasingly vertical: %s; faster than the contact normals' anisotropy (a_f): %s"
+            % (total["verdict"], own["verdict"])]
+
+
 def crossing_row(data, key, claim):
     c = data.claims["verdicts"]["crossings"][key]
     iso, mut = c["isotropic_level"], c["each_other"]
@@ -239,6 +265,7 @@ def claims_block(data):
 def paper_rows(data):
     return [density_rise_fall(data), maximum_row(data), ridge_row(data), symmetry_row(data),
             constant_eta_row(data), delta_r_density_row(data), z_row(data), fabric_row(data),
+            forces_row(data),
             crossing_row(data, "contact_normals", "the contact-normal curves cross slightly "
                          "above pi/5"),
             crossing_row(data, "long_axes", "long axes horizontal, with an invariant near pi/3"),

@@ -11,7 +11,8 @@
   cubic through 7; each with a parametric bootstrap over the points' standard errors. The
   5-point parabola is the nominal fit, half the spread of the four is the fit-window
   systematic.
-* Significance of a difference and the seeds per point that a 3-sigma verdict needs.
+* Significance of a difference and the seeds per point that a 3-sigma verdict needs; the
+  weighted slope of a trend.
 """
 import math
 import re
@@ -164,6 +165,15 @@ def significance(difference, stat, sys=0.0):
         return None
     err = math.hypot(stat, sys or 0.0)
     return difference / err if err > 0 else None
+
+
+def weighted_slope(x, y, se):
+    """least squares of y against x with weights 1/se^2: (slope, its standard error)"""
+    w = 1 / np.asarray(se, float) ** 2
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    xm = np.sum(w * x) / w.sum()
+    sxx = np.sum(w * (x - xm) ** 2)
+    return float(np.sum(w * (x - xm) * y) / sxx), float(1 / math.sqrt(sxx))
 
 
 def seeds_needed(difference, parts, sys=0.0, sigma=SIGMA):

@@ -19,7 +19,8 @@ import numpy as np
 from scipy import stats
 
 from study_histograms import crossings_both, sphere_isotropy
-from study_stats import MIN_DOF, SIGMA, THIN, decide, seeds_needed, sign_test, significance
+from study_stats import (MIN_DOF, SIGMA, THIN, decide, seeds_needed, sign_test, significance,
+                         weighted_slope)
 
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
@@ -169,14 +170,6 @@ def delta_r_effects(selections, law):
             entry[q] = m
         out.append(entry)
     return out
-
-
-def weighted_slope(x, y, se):
-    w = 1 / np.asarray(se) ** 2
-    x, y = np.asarray(x), np.asarray(y)
-    xm = np.sum(w * x) / w.sum()
-    sxx = np.sum(w * (x - xm) ** 2)
-    return float(np.sum(w * (x - xm) * y) / sxx), float(1 / math.sqrt(sxx))
 
 
 def slope_entry(z, shapes):

@@ -45,6 +45,10 @@ def test_tiny_study_through_snakemake(tmp_path):
             assert len(th) == 18 and all(x >= 0 for x in p)
     deposits = list(csv.DictReader(open(res / "deposits.csv")))
     assert len(deposits) == 2 and {d["seed"] for d in deposits} == {"1"}
+    for d in deposits:    # the force measures and their histograms reach the results
+        assert math.isfinite(float(d["K0"])) and math.isfinite(float(d["a_f"]))
+        for name in ("contact_force_histo.dat", "force_histo.dat"):
+            assert (res / "points" / d["point"] / "s1" / name).stat().st_size > 0
     for name in ("fig_density_lines.png", "fig_contact_shapes.png", "fig_orient_shapes.png"):
         assert_image(str(res / "figures" / name))
     assert not (res / "figures" / "fig_density_laws.png").exists()    # one tangential law
@@ -276,13 +280,15 @@ def test_paper_study_definition(tmp_path):
         for z in grid:
             assert len(points[(e, z, 0.0, "coulomb")]) >= 2
     for v in grid + [1.3, 1.5, 1.7]:
-        assert len(points[(v, v, 0.0, "coulomb")]) >= 3
+        assert len(points[(v, v, 0.0, "coulomb")]) >= (6 if v not in (1.7, 1.8) else 3)
         assert len(points[(v, v, 0.0, "viscous")]) >= 1
     for dr in (0.3, 0.6):
         for v in grid:
             for shape in ((v, v), (v, 1.0), (1.0, v)):
                 assert len(points[shape + (dr, "coulomb")]) >= 2
         assert len(points[(1.6, 1.8, dr, "coulomb")]) >= 2
+    for v in (3.5, 4):    # the fall-back
+        assert len(points[(v, v, 0.0, "coulomb")]) >= 4
 
 
 def test_slurm_profile_dry_run(tmp_path):

@@ -126,6 +126,7 @@ def study(tmp_path_factory):
 
 def test_claims_of_a_synthetic_study(study):
     c, stdout = study
+    assert c["forces"] is None    # no deposit with the force measures
     m = c["maxima"]["diagonal"]
     assert m["x_highest"] in (1.4, 1.5)
     assert m["seed_sd"] == pytest.approx(0.001 * math.sqrt(2), rel=1e-9)

@@ -5,11 +5,13 @@ Every shape has two seeds at +-e about its value, so its seed SD is e sqrt(2) an
 SD is known exactly; histograms are P = (1 + A P2(cos theta)) / (4 pi) on 18 bins, which
 cross the isotropic value and each other where P2 = 0, theta = acos(1/sqrt 3)."""
 import math
+import os
 
 import numpy as np
 import pytest
 from scipy import stats
 
+import study_forces
 import study_histograms
 import study_stats
 import study_verdicts
@@ -157,3 +159,75 @@ def test_crossings_and_sphere_isotropy():
     assert s["deviation"][0] == pytest.approx(-0.2, abs=1e-5)
     assert s["largest"]["theta"] == pytest.approx(THETA[0])
     assert not s["within_10_percent"] and s["p_isotropic"] < 1e-6
+
+
+def test_force_trends_along_the_diagonal():
+    """study_forces: a_n, a_f linear in a/c (known slopes), K0 flat; deposits that predate the
+    force measures (nan) and shapes off the diagonal are left out"""
+    e = 0.01
+    deposits = []
+    for v in (1.0, 1.2, 1.4, 2.0, 3.0):
+        ac = v * v
+        for s in (1, -1):
+            deposits.append({"eta": v, "zeta": v, "a_n": 0.4 + 0.02 * ac + s * e,
+                             "a_f": 0.2 + 0.05 * ac + s * e, "K0": 0.7 + s * e})
+        deposits.append({"eta": v, "zeta": v, "a_n": "nan", "a_f": "nan", "K0": "nan"})
+    deposits += [{"eta": 2.0, "zeta": 1.0, "a_n": 9.0, "a_f": 9.0, "K0": 9.0}] * 2
+    f = study_forces.forces(deposits)
+    assert f["deposits"] == 10 and [r["a/c"] for r in f["per_shape"]] == pytest.approx(
+        [1, 1.44, 1.96, 4, 9])
+    ac = np.array([1, 1.44, 1.96, 4, 9])
+    se_slope = e / math.sqrt(np.sum((ac - ac.mean()) ** 2))    # each shape's SE is e
+    for q, slope, spread in (("a_n", 0.02, 1), ("a_f", 0.05, 1), ("a_total", 0.07, 2),
+                             ("K0", 0.0, 1)):    # a_n + a_f: +-2e about its value
+        t = f["trends"][q]["slope_per_unit_a/c"]
+        assert t["slope"] == pytest.approx(slope, abs=1e-12)
+        assert t["se"] == pytest.approx(spread * se_slope, rel=1e-9)
+    assert f["trends"]["a_f"]["slope_per_unit_a/c"]["verdict"] == "grows with a/c"
+    assert f["trends"]["K0"]["slope_per_unit_a/c"]["verdict"].startswith("undecided")
+    end = f["trends"]["a_n"]["thinnest_minus_roundest"]
+    assert end["shapes"] == [[3.0, 3.0], [1.0, 1.0]]
+    assert end["difference"] == pytest.approx(0.16) and end["se"] == pytest.approx(e * 2 ** .5)
+    assert study_forces.forces(deposits[:6]) is None    # fewer than 3 shapes
+
+
+def test_force_figure_from_the_deposits_files(tmp_path):
+    """plot_forces: fbar(theta) / <f> and P(f/<f>) per shape are the seeds' means of the
+    deposits' files, with the per-bin pooled error (two seeds at +-e: SE e); deposits without
+    the files are left out; the figure is written"""
+    import plot_forces
+    e, deposits = 0.01, []
+    for v in (1.0, 1.4, 2.0):
+        for seed, s in ((1, 1), (2, -1), (3, 0)):
+            folder = tmp_path / ("eta%g_s%d" % (v, seed))
+            folder.mkdir()
+            deposits.append({"eta": v, "zeta": v, "folder": str(folder)})
+            if seed == 3:
+                continue    # predates the force measures
+            (folder / "packing.dat").write_text("mean_normal_force 2.0\n")
+            rows = ["%d %.9f 0.1 0.05 %.9f" % (k + 1, t, 2.0 * (1 + v * P2[k]) + 2 * s * e)
+                    for k, t in enumerate(THETA)]
+            (folder / "contact_force_histo.dat").write_text("# h\n# h\n# h\n1000 18\n"
+                                                            + "\n".join(rows) + "\n")
+            f = np.arange(20) * 0.25 + 0.125
+            rows = ["%d %.6f %.9f 0.05" % (k + 1, x, math.exp(-x) + s * e)
+                    for k, x in enumerate(f)]
+            (folder / "force_histo.dat").write_text("# h\n# h\n# h\n1000 20\n" + "\n".join(rows)
+                                                    + "\n")
+    per_shape = plot_forces.curves(deposits)
+    direction = plot_forces.mean_and_error(per_shape, "direction")
+    magnitude = plot_forces.mean_and_error(per_shape, "magnitude")
+    for v in (1.0, 1.4, 2.0):
+        theta, m, err = direction[(v, v)]
+        np.testing.assert_allclose(m, 1 + v * P2, atol=1e-8)
+        np.testing.assert_allclose(err, e, rtol=1e-5)
+        f, p, err = magnitude[(v, v)]
+        np.testing.assert_allclose(p, np.exp(-f), atol=1e-8)
+        np.testing.assert_allclose(err, e, rtol=1e-5)
+    forces = {"deposits": 6, "per_shape": [
+        dict({"eta": v, "zeta": v, "a/c": v * v, "seeds": 2},
+             **{q: {"mean": 0.1 * v, "se": e} for q in study_forces.MEASURES})
+        for v in (1.0, 1.4, 2.0)]}
+    path = plot_forces.figure({"forces": forces}, deposits, str(tmp_path / "f.png"), "test")
+    assert os.path.getsize(path) > 10000
+    assert plot_forces.figure({}, deposits, str(tmp_path / "g.png"), "test") is None
