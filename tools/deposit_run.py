@@ -355,10 +355,11 @@ def main(argv=None):
         if os.path.exists(os.path.join(out, name)):
             os.remove(os.path.join(out, name))
 
-    # the picture: dump image names it by step; keep a stable name too
+    # the picture: dump image names it by step; keep a stable name, with the colour bar
     pics = sorted(glob.glob(os.path.join(out, "deposit-*.png")))
     if pics:
-        shutil.copyfile(pics[-1], os.path.join(out, "deposit.png"))
+        from picture_colorbar import add_colorbar    # matplotlib only when there is a picture
+        add_colorbar(pics[-1], os.path.join(out, "deposit.png"))
         for p in pics:
             os.remove(p)
     pk = read_packing(os.path.join(out, "packing.dat"))
