@@ -146,7 +146,8 @@ FILE_NOTES = {
     "profile.dat": "solid fraction phi(z) per bin: z, phi, solid volume, centres",
     "profile.png": "plot of phi(z) with the slab",
     "deposit.dump": "OVITO dump: semi-axes (radii) and quaternion w,i,j,k",
-    "deposit.png": "picture (dump image)"}
+    "deposit.png": "picture (dump image)",
+    "deposit.restart": "the deposit at rest with its contacts' histories (-var save 1)"}
 
 
 def print_summary(out, settings, pk, nprocs, wall, more_notes):

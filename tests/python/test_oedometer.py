@@ -1,0 +1,104 @@
+"""examples/oedometer/in.oedometer on a tiny deposit with an exact answer.
+
+Nine columns of four equal spheres (d = 1, density 1) stand on the ground in a periodic box
+3.15 d wide, the columns 1.05 d apart (no side contacts), each sphere on the one below, under
+gravity and the deposit's law (F_n = kn xi^(3/2) at rest, for every contact, wall or pair).
+in.oedometer loads them by its servo piston to sigma_w and 2 sigma_w and back to sigma_w
+(sigma_w = 36 m g / A, the deposit's weight stress). At rest each column is a chain: the
+piston's contact carries F_t = sigma_p A / 9, the contact below the k-th sphere from the top
+F_t + k m g. So, at each step:
+* the piston's stress equals the target within in.oedometer's rest tolerance ftol;
+* the piston stands at 4 d - sum of the five overlaps xi = (F/kn)^(2/3) of a chain (the
+  rest criterion leaves the piston within ztol, a force error of ftol moves each overlap by
+  2/3 ftol xi);
+* the slab (in.deposit's: 1 d above the bottom, 2 d below the top, so it holds the second
+  layer) has sigma_zz = sigma_p + the weight above its middle, 2.5 spheres per column (the
+  third and fourth and half of its own: the per-atom virial gives each atom half of each of
+  its contacts). The virial's branch lengths are d - xi and the slab is 1 - (xi_1 + xi_2 +
+  xi_3) thick, so the measure differs from that by at most 3 xi_max / d relative, plus ftol.
+  Without the weight term it would be 0.625 sigma_w too low (24 % at sigma_w).
+"""
+import math
+import os
+import re
+
+import pytest
+
+from conftest import new_lammps
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+INPUT = os.path.join(ROOT, "examples", "oedometer", "in.oedometer")
+KN, SPACING, LAYERS, SIDE = 1.0e4, 1.05, 4, 3
+MASS = math.pi / 6
+FTOL, ZTOL = 1e-3, 1e-4    # in.oedometer's defaults
+LOADS = (1, 2, 1)
+
+
+def write_columns(path):
+    lmp = new_lammps()
+    box = SIDE * SPACING
+    atoms = "\n".join(f"create_atoms 1 single {(i + 0.5) * SPACING} {(j + 0.5) * SPACING} "
+                      f"{k + 0.5} units box"
+                      for i in range(SIDE) for j in range(SIDE) for k in range(LAYERS))
+    lmp.commands_string(f"""
+        units lj
+        atom_style ellipsoid
+        boundary p p f
+        region box block 0 {box} 0 {box} 0 {LAYERS + 3}
+        create_box 1 box
+        {atoms}
+        set type 1 shape 1 1 1
+        set type 1 density 1.0
+        timestep 1e-3
+        write_restart {path}
+        """)
+    lmp.close()
+
+
+@pytest.fixture(scope="module")
+def levels(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("oedometer")
+    restart = str(folder / "columns.restart")
+    write_columns(restart)
+    log = str(folder / "log.lammps")
+    lmp = new_lammps()
+    lmp.close()    # the plugin loads: new_lammps checks it
+    from lammps import lammps
+    lmp = lammps(cmdargs=["-log", log, "-screen", "none", "-nocite", "-var", "restart", restart,
+                          "-var", "vmax", "0.5", "-var", "loads"] + [str(x) for x in LOADS])
+    lmp.file(INPUT)
+    lmp.close()
+    rows = []
+    for line in open(log):
+        if line.startswith("LEVEL"):
+            words = line.split()[2:]
+            rows.append({k: float(v) for k, v in zip(words[::2], words[1::2])})
+    assert len(rows) == len(LOADS)
+    return rows
+
+
+def overlap(force):
+    return (force / KN)**(2 / 3)
+
+
+@pytest.mark.parametrize("index", range(len(LOADS)))
+def test_piston_and_slab_carry_the_load_and_the_weight(levels, index):
+    row = levels[index]
+    area = (SIDE * SPACING)**2
+    sigma_w = SIDE**2 * LAYERS * MASS / area
+    assert row["at_rest"] == 1
+    assert row["sigma_w"] == pytest.approx(sigma_w, rel=1e-6)
+    assert row["target"] == pytest.approx(LOADS[index] * sigma_w, rel=1e-6)
+    assert row["sigma_piston"] == pytest.approx(row["target"], rel=FTOL)
+
+    top = row["target"] * area / SIDE**2    # the piston's force on one column
+    chain = [top + k * MASS for k in range(LAYERS + 1)]    # from the piston to the ground
+    xis = [overlap(f) for f in chain]
+    height = LAYERS - sum(xis)
+    assert row["piston"] == pytest.approx(height, abs=ZTOL + sum(2 / 3 * FTOL * x for x in xis))
+
+    weight_above = SIDE**2 * 2.5 * MASS / area
+    assert row["zlo"] < 1.5 < row["zhi"] < 2.5    # the slab holds the second layer only
+    expected = row["sigma_piston"] + weight_above
+    assert row["sigma_zz"] == pytest.approx(expected, rel=3 * max(xis) + FTOL)
+    assert abs(row["sigma_xx"]) < 1e-12 and abs(row["sigma_yy"]) < 1e-12    # no side contacts
