@@ -1,0 +1,51 @@
+"""tools/oedometer_run.py's table and tools/oedometer_study.py's section, without LAMMPS.
+
+* The table: strain from the first step's piston height, the modulus of each step from the
+  piston's stress, K0 of the slab, the phase split at the largest load, on made-up LEVEL
+  values whose answers are worked out by hand.
+* The study section (examples/oedometer/study_section.md, merged into doc/study.md) is what
+  the report makes of the committed results/oedometer/oedometer.csv: a hand edit of a number or
+  a csv changed without a new report fails.
+"""
+import argparse
+import os
+import sys
+
+import pytest
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import oedometer_run  # noqa: E402
+import oedometer_study  # noqa: E402
+
+
+def level(k, load, piston, sigma, sxx, szz):
+    return {"level": k, "load": load, "target": load * 2.0, "at_rest": 1, "step": 1000 * k,
+            "piston": piston, "sigma_piston": sigma, "sigma_xx": sxx, "sigma_yy": sxx,
+            "sigma_zz": szz, "phi": 0.6, "sigma_w": 2.0, "gain": 1e-3, "gamma": 100.0}
+
+
+def test_strain_modulus_and_k0_of_each_step():
+    args = argparse.Namespace(N=10, eta=1.0, zeta=1.0, dr=0.0, seed=1)
+    levels = [level(1, 1, 10.0, 2.0, 1.0, 4.0), level(2, 2, 9.9, 4.0, 2.0, 6.0),
+              level(3, 1, 9.95, 2.0, 2.0, 4.0)]
+    rows = oedometer_run.table(args, levels)
+    assert [r["phase"] for r in rows] == ["load", "load", "unload"]
+    assert rows[0]["eps_zz"] == 0.0 and rows[0]["M"] == ""
+    assert rows[1]["eps_zz"] == pytest.approx(0.01)
+    assert rows[1]["M"] == pytest.approx(2.0 / 0.01)       # 2 rho g d over 1 % strain
+    assert rows[2]["eps_zz"] == pytest.approx(0.005)
+    assert rows[2]["M"] == pytest.approx(-2.0 / -0.005)    # unloading: both fall
+    assert [r["K0"] for r in rows] == pytest.approx([0.25, 1 / 3, 0.5])
+    assert rows[0]["phi_mean"] == pytest.approx(2.0 / 10.0)    # h_s / z_p, rho = g = 1
+
+
+def test_study_section_is_generated_from_the_csv():
+    rows = oedometer_study.read_table()
+    if not rows:
+        pytest.fail("results/oedometer/oedometer.csv is missing")
+    summary = oedometer_study.summarise(rows)
+    with open(oedometer_study.SECTION) as f:
+        committed = f.read()
+    assert committed == oedometer_study.section(summary), \
+        "study_section.md differs from the csv: run tools/oedometer_study.py report"
