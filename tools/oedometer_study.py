@@ -122,6 +122,9 @@ def plot(summary, path):
     for a in (ax, bx):
         a.set_xlabel(r"asphericity $a/c = \eta\zeta$ ($\eta = \zeta$, $\delta_r = 0$)")
         a.set_xscale("log")
+        a.minorticks_off()
+        a.set_xticks(sorted({s["aspect"] for s in summary}))
+        a.set_xticklabels(["%g" % x for x in sorted({s["aspect"] for s in summary})])
         a.legend(fontsize=8)
         a.grid(alpha=0.3)
     n = summary[0]["N"]
@@ -129,6 +132,13 @@ def plot(summary, path):
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def span(groups, digits):
+    """'x' when every group's mean prints alike, else 'x to y'"""
+    means = ["%.*f" % (digits, v[0]) for v in groups.values()]
+    lo, hi = min(groups.values())[0], max(groups.values())[0]
+    return means[0] if len(set(means)) == 1 else "%.*f to %.*f" % (digits, lo, digits, hi)
 
 
 def fmt(value, se, digits):
@@ -153,14 +163,18 @@ def section(summary):
         "A deposit of in.deposit's protocol (N = %d, delta_r = 0, eta = zeta, seeds %s), "
         "laterally periodic, loaded by a frictionless servo piston (examples/oedometer/"
         "in.oedometer) in steps of %s sigma_w and unloaded; sigma_w = (the deposit's weight) / "
-        "(Lx Ly), %s rho g d for the four shapes. The strain is eps_zz = (H0 - z_p) / H0 with "
+        "(Lx Ly) = %s rho g d. The strain is eps_zz = (H0 - z_p) / H0 with "
         "H0 the piston's height under the first load; M = d sigma / d eps_zz over one step, "
-        "with the piston's stress; K0 = sigma_xx / sigma_zz of the slab (per-atom virial). "
-        "Errors: standard error over the %d seeds (|x1 - x2| / 2 for two)."
-        % (n, ", ".join(str(s) for s in seeds), loads,
-           " to ".join("%.3f" % x for x in (min(v[0] for v in sigw.values()),
-                                             max(v[0] for v in sigw.values()))),
-           len(seeds)),
+        "with the piston's stress; K0 = sigma_xx / sigma_zz of the slab (per-atom virial); "
+        "examples/oedometer/README.md defines them and the rest criterion. "
+        "Errors: standard error over the %d seeds (|x1 - x2| / 2 for two). N = %d, not the "
+        "study's 1000: the eight runs shared 2 cores with the study and had to fit in about "
+        "an hour; in.deposit's box grows as sqrt(N), so the deposit's height and sigma_w are "
+        "those of N = 1000, and its edge stays wider than two neighbour cut-offs of the "
+        "longest particles (eta = zeta = 3). Not in the paper; no peer reports it for "
+        "ellipsoids. Figure: results/oedometer/modulus_k0.png; data: "
+        "results/oedometer/oedometer.csv (every step) and summary.csv (every run)."
+        % (n, ", ".join(str(s) for s in seeds), loads, span(sigw, 3), len(seeds), n),
         "",
         "| a/c | M loading 2-4 sigma_w | M unloading 4-2 sigma_w | K0 at %g sigma_w | "
         "K0 at %g sigma_w | K0 after unloading | eps_zz at %g sigma_w | phi at %g sigma_w |"
