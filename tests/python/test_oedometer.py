@@ -20,7 +20,7 @@ F_t + k m g. So, at each step:
 """
 import math
 import os
-import re
+import subprocess
 
 import pytest
 
@@ -102,3 +102,12 @@ def test_piston_and_slab_carry_the_load_and_the_weight(levels, index):
     expected = row["sigma_piston"] + weight_above
     assert row["sigma_zz"] == pytest.approx(expected, rel=3 * max(xis) + FTOL)
     assert abs(row["sigma_xx"]) < 1e-12 and abs(row["sigma_yy"]) < 1e-12    # no side contacts
+
+
+def test_missing_restart_is_a_clear_error(tmp_path):
+    lmp_binary = os.path.join(os.environ["LAMMPS_BUILD"], "lmp")
+    missing = str(tmp_path / "none.restart")
+    run = subprocess.run([lmp_binary, "-in", INPUT, "-log", "none", "-nocite", "-var", "restart",
+                          missing], capture_output=True, text=True, timeout=60)
+    assert run.returncode != 0
+    assert f"-var restart {missing}: no such file" in run.stdout
