@@ -105,7 +105,7 @@ def test_piston_and_slab_carry_the_load_and_the_weight(levels, index):
 
 
 def test_missing_restart_is_a_clear_error(tmp_path):
-    lmp_binary = os.path.join(os.environ["LAMMPS_BUILD"], "lmp")
+    lmp_binary = os.environ["ELLIPSOID_DEP_LMP"]    # tests/CMakeLists.txt sets it
     missing = str(tmp_path / "none.restart")
     run = subprocess.run([lmp_binary, "-in", INPUT, "-log", "none", "-nocite", "-var", "restart",
                           missing], capture_output=True, text=True, timeout=60)

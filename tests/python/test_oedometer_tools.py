@@ -3,7 +3,7 @@
 * The table: strain from the first step's piston height, the modulus of each step from the
   piston's stress, K0 of the slab, the phase split at the largest load, on made-up LEVEL
   values whose answers are worked out by hand.
-* The study section (examples/oedometer/study_section.md, merged into doc/study.md) is what
+* The study section (in doc/study.md between its markers) is what
   the report makes of the committed results/oedometer/oedometer.csv: a hand edit of a number or
   a csv changed without a new report fails.
 """
@@ -45,7 +45,7 @@ def test_study_section_is_generated_from_the_csv():
     if not rows:
         pytest.fail("results/oedometer/oedometer.csv is missing")
     summary = oedometer_study.summarise(rows)
-    with open(oedometer_study.SECTION) as f:
-        committed = f.read()
+    with open(oedometer_study.STUDY_DOC) as f:
+        committed = oedometer_study.doc_block(f.read())
     assert committed == oedometer_study.section(summary), \
-        "study_section.md differs from the csv: run tools/oedometer_study.py report"
+        "doc/study.md's oedometer section differs from the csv: run tools/oedometer_study.py report"
