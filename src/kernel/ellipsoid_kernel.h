@@ -20,6 +20,8 @@
 #include "ellipsoid_pair_history.h"
 #include "ellipsoid_pipeline.h"
 #include "ellipsoid_plane_contact.h"
+#include "ellipsoid_sphere_contact.h"
+#include "ellipsoid_cylinder_contact.h"
 #include "ellipsoid_shape.h"
 #include "ellipsoid_wall_contact.h"
 #include "ellipsoid_wang.h"

@@ -138,6 +138,20 @@ inline double effective_radius(double ra, double rb)
   return ra * rb / (ra + rb);
 }
 
+// R* of a particle against a curved wall: the particle's surface radius r at the contact and
+// the wall's contact radius, LAMMPS's region convention (region->contact[].radius: > 0 convex,
+// < 0 concave, 0 flat; a sphere region's is -+R, a cylinder's lateral surface's -2R). A
+// conformal contact (a flat side of a particle against a wall curved almost as much) is capped
+// at CONFORMAL_CAP r; a sphere smaller than 0.9 R in a sphere region is below the cap.
+constexpr double CONFORMAL_CAP = 10.0;
+inline double wall_effective_radius(double particle_radius, double wall_radius)
+{
+  if (wall_radius == 0.0) return particle_radius;
+  const double curvature = 1.0 / particle_radius + 1.0 / wall_radius;
+  const double cap = CONFORMAL_CAP * particle_radius;
+  return curvature * cap > 1.0 ? 1.0 / curvature : cap;
+}
+
 // R* of a contact with unit normal n from A to B: Gaussian radii of A at n and of B at -n.
 inline double effective_radius(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &n)
 {

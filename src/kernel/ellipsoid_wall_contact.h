@@ -14,7 +14,11 @@
      particle side. A particle whose bounding radius is below its centre's clearance cannot
      touch the wall.
 
-   Degenerate cases: those of the shape's contact (ellipsoid_plane_contact.h).
+   - R*: the particle's Gaussian radius at the contact and the wall's contact radius, LAMMPS's
+     region convention (wall_effective_radius, ellipsoid_shape.h).
+
+   Degenerate cases: those of the shape's contact (ellipsoid_plane_contact.h,
+   ellipsoid_sphere_contact.h, ellipsoid_cylinder_contact.h).
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_WALL_CONTACT_H
@@ -25,13 +29,19 @@
 namespace EllipsoidDep {
 
 enum class WallShape {
-  Plane    // the solid half-space {x : normal.x <= offset}
+  Plane,         // the solid half-space {x : normal.x <= offset}
+  Sphere,        // the sphere |x - center| = radius; inside: particles in the ball
+  Cylinder       // the infinite cylinder through center along axis; inside: particles in it
 };
 
 struct WallSurface {
   WallShape shape = WallShape::Plane;
   Vec3 normal = Vec3::UnitZ();    // Plane: unit, into the particle region
   double offset = 0.0;            // Plane: where the solid ends along normal
+  Vec3 center = Vec3::Zero();     // Sphere: centre; Cylinder: a point of the axis
+  Vec3 axis = Vec3::UnitZ();      // Cylinder: unit axis
+  double radius = 0.0;            // Sphere, Cylinder
+  bool inside = true;             // Sphere, Cylinder: the particles' side
 };
 
 double wall_clearance(const WallSurface &w, const Vec3 &x);

@@ -1,0 +1,120 @@
+/* ----------------------------------------------------------------------
+   ELLIPSOID_DEP kernel: farthest and nearest surface points (see ellipsoid_point_extremum.h)
+------------------------------------------------------------------------- */
+
+#include "ellipsoid_point_extremum.h"
+
+#include <cmath>
+#include <limits>
+
+namespace EllipsoidDep {
+
+namespace {
+
+  constexpr int MAX_ITERATIONS = 200;
+
+  // the root of F(t) = 1 in [lo, hi], F monotone there (increasing when rising); Newton's
+  // steps on 1/sqrt(F) - 1, nearly linear in t where one term dominates (close to a pole)
+  template <int N>
+  double secular_root(const Eigen::Matrix<double, N, 1> &a2, const Eigen::Matrix<double, N, 1> &x,
+                      double lo, double hi, bool rising, bool &converged)
+  {
+    double t = 0.5 * (lo + hi);
+    converged = false;
+    for (int it = 0; it < MAX_ITERATIONS; it++) {
+      double big_f = 0.0, dbig_f = 0.0;
+      for (int k = 0; k < N; k++) {
+        const double q = 1.0 / (a2[k] + t);
+        const double term = a2[k] * x[k] * x[k] * q * q;
+        big_f += term;
+        dbig_f -= 2.0 * term * q;
+      }
+      const double f = big_f - 1.0;
+      // shrink the bracket on the side the sign of F - 1 rules out
+      if ((f < 0.0) == rising)
+        lo = t;
+      else
+        hi = t;
+      if (f == 0.0 || hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * std::fabs(t)) {
+        converged = true;
+        return t;
+      }
+      const double g = 1.0 / std::sqrt(big_f) - 1.0;
+      const double dg = -0.5 * dbig_f / (big_f * std::sqrt(big_f));
+      double next = dg != 0.0 && std::isfinite(dg) ? t - g / dg : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (next == t) {
+        converged = true;
+        return t;
+      }
+      t = next;
+    }
+    return t;
+  }
+
+  template <int N>
+  SurfaceExtremum<N> point_at(const Eigen::Matrix<double, N, 1> &a2,
+                              const Eigen::Matrix<double, N, 1> &x, double t, bool converged)
+  {
+    SurfaceExtremum<N> r;
+    for (int k = 0; k < N; k++) r.point[k] = a2[k] * x[k] / (a2[k] + t);
+    r.distance = (r.point - x).norm();
+    r.converged = converged;
+    return r;
+  }
+
+}    // namespace
+
+template <int N>
+SurfaceExtremum<N> farthest_surface_point(const Eigen::Matrix<double, N, 1> &a2,
+                                          const Eigen::Matrix<double, N, 1> &x)
+{
+  int largest = 0;
+  for (int k = 1; k < N; k++)
+    if (a2[k] > a2[largest]) largest = k;
+  const double amax2 = a2[largest];
+  // hard case: no component along any largest axis, and F stays below 1 up to -A_max
+  bool hard = true;
+  double f_hard = 0.0;
+  for (int k = 0; k < N; k++) {
+    if (a2[k] == amax2) {
+      if (x[k] != 0.0) hard = false;
+    } else {
+      const double q = a2[k] - amax2;
+      f_hard += a2[k] * x[k] * x[k] / (q * q);
+    }
+  }
+  if (hard && f_hard <= 1.0) {
+    SurfaceExtremum<N> r;
+    for (int k = 0; k < N; k++)
+      r.point[k] = a2[k] == amax2 ? 0.0 : a2[k] * x[k] / (a2[k] - amax2);
+    r.point[largest] = std::sqrt(amax2 * (1.0 - f_hard));
+    r.distance = (r.point - x).norm();
+    return r;
+  }
+  bool converged = false;
+  const double t = secular_root<N>(a2, x, -amax2 - std::sqrt(amax2) * x.norm(), -amax2, true,
+                                   converged);
+  return point_at<N>(a2, x, t, converged);
+}
+
+template <int N>
+SurfaceExtremum<N> nearest_surface_point(const Eigen::Matrix<double, N, 1> &a2,
+                                         const Eigen::Matrix<double, N, 1> &x)
+{
+  bool converged = false;
+  const double t = secular_root<N>(a2, x, 0.0, std::sqrt(a2.maxCoeff()) * x.norm(), false,
+                                   converged);
+  return point_at<N>(a2, x, t, converged);
+}
+
+template SurfaceExtremum<2> farthest_surface_point<2>(const Eigen::Vector2d &,
+                                                      const Eigen::Vector2d &);
+template SurfaceExtremum<3> farthest_surface_point<3>(const Eigen::Vector3d &,
+                                                      const Eigen::Vector3d &);
+template SurfaceExtremum<2> nearest_surface_point<2>(const Eigen::Vector2d &,
+                                                     const Eigen::Vector2d &);
+template SurfaceExtremum<3> nearest_surface_point<3>(const Eigen::Vector3d &,
+                                                     const Eigen::Vector3d &);
+
+}    // namespace EllipsoidDep
