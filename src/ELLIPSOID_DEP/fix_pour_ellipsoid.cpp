@@ -225,7 +225,7 @@ void FixPourEllipsoid::check_contact_times(bool run_start)
     times.add_contact(lmp, law, effective_radius(radius, radius), mass * mass / (mass + mass),
                       speed, fmt::format("types {} {}", ntype, ntype));
   // one against every wall acting on the poured particles (their mask: all and this group)
-  for (const auto *fix : modify->get_fix_by_style("^wall/gran/ellipsoid$")) {
+  for (const auto *fix : modify->get_fix_by_style("^wall/gran/(region/)?ellipsoid$")) {
     const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
     if (wall && (fix->groupbit & (1 | groupbit)))
       times.add_contact(lmp, wall->force_law(), radius, mass, speed,

@@ -29,192 +29,12 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace EllipsoidDep;
 
-/* ----------------------------------------------------------------------
-   fix ID group wall/gran/ellipsoid <force-law words> zplane lo hi [xplane lo hi] ...
-       [wall_material E nu | NAME | rigid] [impact_velocity v]
-------------------------------------------------------------------------- */
-
-FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), size_history(0), history_one(nullptr), history_update(true),
-    impact_velocity(0.0), force_flag(0)
-{
-  if (narg < 4) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid", error);
-  EllipsoidAtoms::require_granular_style(lmp, "Fix wall/gran/ellipsoid");
-
-  // the force law: exactly the words pair_coeff takes; by default the wall is of the
-  // particles' material (as LAMMPS's fix wall/gran), wall_material gives it its own
-  std::vector<std::string> words(arg + 3, arg + narg);
-  std::optional<MaterialTable> materials;
-  if (names_a_material(words)) materials.emplace(lmp);
-  const MaterialLookup lookup = materials ? materials->lookup() : MaterialLookup();
-  std::string message;
-  const int used = parse_force_law(words, law, message, lookup);
-  if (used < 0) error->all(FLERR, "Fix wall/gran/ellipsoid: {}", message);
-  const ForceLaw particle_law = law;
-  bool wall_material_given = false;
-
-  // walls
-  int iarg = 3 + used;
-  if (iarg >= narg)
-    error->all(FLERR,
-               "Fix wall/gran/ellipsoid needs at least one wall (xplane, yplane or "
-               "zplane lo hi) after the force law");
-  bool seen[3] = {false, false, false};
-  while (iarg < narg) {
-    const std::string word = arg[iarg];
-    if (word == "wall_material") {
-      if (wall_material_given)
-        error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
-      wall_material_given = true;
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
-      if (!std::holds_alternative<HertzMaterialNormal>(particle_law.normal))
-        error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: wall_material needs hertz/material");
-      ForceLaw wall_side = particle_law;
-      auto &wall_normal = std::get<HertzMaterialNormal>(wall_side.normal);
-      const std::string value = arg[iarg + 1];
-      if (value == "rigid") {
-        // an undeformable wall: no compliance, 1/E* = (1 - nu^2)/E of the particle
-        wall_normal.youngs = HUGE_VAL;
-        iarg += 2;
-      } else if (utils::is_double(value)) {
-        if (iarg + 3 > narg)
-          utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid wall_material E nu", error);
-        wall_normal.youngs = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-        wall_normal.poisson = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
-        message = wall_side.validate();
-        if (!message.empty())
-          error->all(FLERR, iarg, "Fix wall/gran/ellipsoid wall_material: {}", message);
-        iarg += 3;
-      } else {
-        Material material{};
-        message = lookup(value, material);
-        if (!message.empty())
-          error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid wall_material: {}", message);
-        wall_normal.youngs = material.youngs;
-        wall_normal.poisson = material.poisson;
-        iarg += 2;
-      }
-      // the pair's mixing rule: the restitution stays the particle law's
-      mix_laws(particle_law, wall_side, law);
-      continue;
-    }
-    if (word == "wiggle" || word == "shear") {
-      iarg += parse_motion(iarg, narg, arg);
-      continue;
-    }
-    if (word == "servo") {
-      iarg += parse_servo(iarg, narg, arg);
-      continue;
-    }
-    if (word == "contacts") {    // fix wall/gran's per-atom contact array
-      peratom_flag = 1;
-      iarg += 1;
-      continue;
-    }
-    if (word == "impact_velocity") {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
-      impact_velocity = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(impact_velocity > 0.0))
-        error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid impact_velocity must be > 0");
-      iarg += 2;
-      continue;
-    }
-    int dim = -1;
-    if (word == "xplane")
-      dim = 0;
-    else if (word == "yplane")
-      dim = 1;
-    else if (word == "zplane")
-      dim = 2;
-    if (dim < 0)
-      error->all(FLERR, iarg,
-                 "Unknown fix wall/gran/ellipsoid keyword '{}' (expected xplane, "
-                 "yplane, zplane, wall_material, wiggle, shear, servo, contacts, "
-                 "impact_velocity, or a force-law word)",
-                 word);
-    if (seen[dim]) error->all(FLERR, iarg, "Fix wall/gran/ellipsoid: {} given twice", word);
-    seen[dim] = true;
-    if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid " + word, error);
-    if (domain->periodicity[dim])
-      error->all(FLERR, iarg, "Cannot use fix wall/gran/ellipsoid {} in a periodic dimension",
-                 word);
-    for (int k = 0; k < 2; k++) {
-      const char *value = arg[iarg + 1 + k];
-      if (strcmp(value, "NULL") == 0) continue;
-      if (!utils::is_double(value))
-        error->all(FLERR, iarg + 1 + k,
-                   "Fix wall/gran/ellipsoid {} {}: expected a number or "
-                   "NULL, got '{}'",
-                   word, k == 0 ? "lo" : "hi", value);
-      // lo: solid below the plane, hi: solid above it
-      const double coord = utils::numeric(FLERR, value, false, lmp);
-      WallSurface w;
-      w.shape = WallShape::Plane;
-      w.normal = Vec3::Zero();
-      w.normal[dim] = k == 0 ? 1.0 : -1.0;
-      w.offset = k == 0 ? coord : -coord;
-      walls.push_back(w);
-    }
-    const char *lo = arg[iarg + 1], *hi = arg[iarg + 2];
-    if (strcmp(lo, "NULL") != 0 && strcmp(hi, "NULL") != 0 &&
-        !(utils::numeric(FLERR, lo, false, lmp) < utils::numeric(FLERR, hi, false, lmp)))
-      error->all(FLERR, iarg + 1, "Fix wall/gran/ellipsoid {}: lo {} must be below hi {}", word, lo,
-                 hi);
-    iarg += 3;
-  }
-  if (walls.empty())
-    error->all(FLERR, "Fix wall/gran/ellipsoid: every wall is NULL; nothing to do");
-  if (motion.kind == Motion::Kind::Shear)
-    for (const WallSurface &w : walls)
-      if (w.normal[motion.dim] != 0.0)
-        error->all(FLERR,
-                   "Fix wall/gran/ellipsoid: shear along {} would move a wall normal to {} "
-                   "into the particles (use wiggle)",
-                   "xyz"[motion.dim], "xyz"[motion.dim]);
-  if (motion.kind == Motion::Kind::Servo && walls.size() != 1)
-    error->all(FLERR, "Fix wall/gran/ellipsoid servo moves one wall: give one lo or hi wall (the "
-                      "other walls in a fix of their own)");
-  for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
-  restart_global = motion.kind != Motion::Kind::None ? 1 : 0;
-  motion.time_origin = update->ntimestep;
-  wall_velocity = Vec3::Zero();
-
-  const int nwalls = static_cast<int>(walls.size());
-  vector_flag = 1;
-  // a servo's wall also reports where it is (its coordinate along its normal's dimension)
-  size_vector = 3 * nwalls + (motion.kind == Motion::Kind::Servo ? 1 : 0);
-  global_freq = 1;
-  extvector = 1;
-  create_attribute = 1;
-  dynamic_group_allow = 1;
-
-  wall_force.assign(3 * nwalls, 0.0);
-  wall_force_all.assign(3 * nwalls, 0.0);
-
-  size_history = law.history_size() * nwalls;
-  restart_peratom = size_history > 0 ? 1 : 0;
-  maxexchange = size_history;
-  if (peratom_flag) {
-    size_peratom_cols = CONTACT_COLUMNS;
-    peratom_freq = 1;
-  }
-  if (size_history || peratom_flag) {
-    grow_arrays(atom->nmax);
-    atom->add_callback(Atom::GROW);
-  }
-  if (size_history) {
-    atom->add_callback(Atom::RESTART);
-    for (int i = 0; i < atom->nlocal; i++)
-      for (int m = 0; m < size_history; m++) history_one[i][m] = 0.0;
-  }
-}
-
 /* ---------------------------------------------------------------------- */
 
 FixWallGranEllipsoid::~FixWallGranEllipsoid()
 {
-  if (size_history || peratom_flag) atom->delete_callback(id, Atom::GROW);
-  if (size_history) atom->delete_callback(id, Atom::RESTART);
+  if (allocated && (size_history || peratom_flag)) atom->delete_callback(id, Atom::GROW);
+  if (allocated && size_history) atom->delete_callback(id, Atom::RESTART);
   memory->destroy(history_one);
   memory->destroy(array_atom);
 }
@@ -233,7 +53,7 @@ int FixWallGranEllipsoid::setmask()
 void FixWallGranEllipsoid::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
-    error->all(FLERR, "Fix wall/gran/ellipsoid does not support run_style respa");
+    error->all(FLERR, "Fix {} does not support run_style respa", style);
   update_contact_times();
 }
 
@@ -252,46 +72,64 @@ void FixWallGranEllipsoid::update_contact_times()
     if (!(mass > 0.0 && speed > 0.0)) continue;
     times.add_contact(lmp, law, radius, mass, speed, fmt::format("type {}", t));
   }
-  report_contact_times(lmp, "Fix wall/gran/ellipsoid", times, speed, times_reported);
+  report_contact_times(lmp, fmt::format("Fix {}", style), times, speed, times_reported);
 }
 
 /* ----------------------------------------------------------------------
-   A wall cutting through a particle's centre is an error (the contact would be
-   meaningless); an overlap deeper than half the smallest semi-axis is a warning.
+   Planes: a wall cutting through a particle's centre is an error (the contact would be
+   meaningless). A region: a particle whose centre lies outside it is left alone (as LAMMPS's
+   fix wall/gran/region does), with a warning that says how many. Both: an overlap deeper than
+   half the smallest semi-axis is a warning.
 ------------------------------------------------------------------------- */
 
 void FixWallGranEllipsoid::setup(int vflag)
 {
-  if (motion.kind != Motion::Kind::Servo) move_walls();
+  const std::string label = fmt::format("Fix {}", style);
+  if (motion.kind != Motion::Kind::Servo) update_walls();
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal;
-  double counts[2] = {0.0, 0.0};
+  double counts[3] = {0.0, 0.0, 0.0};    // centres beyond a wall, deep overlaps, any overlap
   for (int i = 0; i < nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
-    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix wall/gran/ellipsoid", i, groupbit);
+    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, label.c_str(), i, groupbit);
     const Ellipsoid e = atoms.ellipsoid(i);
     const double thin = e.semi_axes.minCoeff();
+    if (!reaches_walls(i)) {
+      counts[0] += 1.0;
+      continue;
+    }
+    bool overlapping = false;
     for (const WallSurface &w : walls) {
       if (wall_clearance(w, e.center) <= 0.0) {
         counts[0] += 1.0;
-      } else {
-        const ContactGeometry g = wall_contact(e, w);
-        if (g.overlap > 0.5 * thin) counts[1] += 1.0;
+        overlapping = false;
+        break;
       }
+      const ContactGeometry g = wall_contact(e, w);
+      if (g.overlap > 0.5 * thin) counts[1] += 1.0;
+      if (g.overlap > 0.0) overlapping = true;
     }
+    if (overlapping) counts[2] += 1.0;
   }
-  double all[2];
-  MPI_Allreduce(counts, all, 2, MPI_DOUBLE, MPI_SUM, world);
-  if (all[0] > 0.0)
-    error->all(FLERR,
-               "Fix wall/gran/ellipsoid: {:.0f} particle centre(s) lie on the solid side "
-               "of a wall",
+  double all[3];
+  MPI_Allreduce(counts, all, 3, MPI_DOUBLE, MPI_SUM, world);
+  if (all[0] > 0.0 && !region_style)
+    error->all(FLERR, "{}: {:.0f} particle centre(s) lie on the solid side of a wall", label,
                all[0]);
-  if (all[1] > 0.0 && comm->me == 0)
-    error->warning(FLERR,
-                   "Fix wall/gran/ellipsoid: {:.0f} particle(s) overlap a wall by more "
-                   "than half their smallest semi-axis at setup",
-                   all[1]);
+  if (comm->me == 0) {
+    if (all[0] > 0.0)
+      error->warning(FLERR,
+                     "{}: {:.0f} particle centre(s) lie outside region {}; the wall leaves them "
+                     "alone until they are back inside",
+                     label, all[0], region_id);
+    if (all[2] > 0.0 && region_style)
+      error->warning(FLERR, "{}: the wall starts inside {:.0f} particle(s)", label, all[2]);
+    if (all[1] > 0.0)
+      error->warning(FLERR,
+                     "{}: {:.0f} particle(s) overlap a wall by more than half their smallest "
+                     "semi-axis at setup",
+                     label, all[1]);
+  }
 
   // setup forces must not advance the law's history
   history_update = false;
@@ -309,8 +147,9 @@ void FixWallGranEllipsoid::post_force(int /*vflag*/)
 void FixWallGranEllipsoid::wall_forces()
 {
   force_flag = 0;
+  const std::string label = fmt::format("Fix {}", style);
   // a servo moves at time steps only (setup forces look without moving anything)
-  if (history_update || motion.kind != Motion::Kind::Servo) move_walls();
+  if (history_update || motion.kind != Motion::Kind::Servo) update_walls();
   std::fill(wall_force.begin(), wall_force.end(), 0.0);
 
   const EllipsoidAtoms atoms(atom);
@@ -328,7 +167,8 @@ void FixWallGranEllipsoid::wall_forces()
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     // an atom inserted during the run without a shape (fix deposit): the walls would let it go
-    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, "Fix wall/gran/ellipsoid", i, groupbit);
+    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, label.c_str(), i, groupbit);
+    if (!reaches_walls(i)) continue;
     const double bound = atoms.bounding_radius(i);
     bool built = false, moving = false;
     EllipsoidState state;
@@ -344,6 +184,13 @@ void FixWallGranEllipsoid::wall_forces()
           built = true;
         }
         g = wall_contact(state.shape, w);
+        // a curved wall's iteration cap: the last iterate is used, and counted
+        if (g.status == Status::NotConverged) {
+          unconverged++;
+          if (g.overlap > 0.0) g.status = Status::Overlapping;
+        } else if (g.status == Status::Degenerate) {
+          degenerate++;
+        }
       }
       if (g.status != Status::Overlapping) {
         if (history && history_update) std::fill_n(history, law.history_size(), 0.0);
@@ -356,8 +203,9 @@ void FixWallGranEllipsoid::wall_forces()
       // setup forces look at the stored history without advancing it (on a copy, dt 0), as
       // the pair's do: a step's displacement there would push the particle once, unrecorded
       const LawHistory law_history(history, law.history_size(), history_update);
-      const ContactForce result = law.compute(g, wall_motion(state, g.point, wall_velocity),
-                                              history_update ? dt : 0.0, law_history.get());
+      const ContactForce result =
+          law.compute(g, wall_motion(state, g.point, velocity_at(k, g.point_b)),
+                      history_update ? dt : 0.0, law_history.get());
       for (int d = 0; d < 3; d++) {
         f[i][d] += result.force_i[d];
         torque[i][d] += result.torque_i[d];
@@ -374,6 +222,24 @@ void FixWallGranEllipsoid::wall_forces()
     motion.force = -Vec3(wall_force_all[0], wall_force_all[1], wall_force_all[2])
                         .dot(walls[0].normal);
   }
+}
+
+/* ----------------------------------------------------------------------
+   the curved walls' contacts the kernel could not settle in this run, counted over ranks
+------------------------------------------------------------------------- */
+
+void FixWallGranEllipsoid::post_run()
+{
+  const double local[2] = {static_cast<double>(unconverged), static_cast<double>(degenerate)};
+  double all[2];
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  if ((all[0] > 0.0 || all[1] > 0.0) && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix {}: {:.0f} wall contact(s) reached the iteration cap (the last iterate "
+                   "was used), {:.0f} were degenerate (no force: a particle swallowed the "
+                   "axis or centre of a wall)",
+                   style, all[0], all[1]);
+  unconverged = degenerate = 0;
 }
 
 /* ----------------------------------------------------------------------

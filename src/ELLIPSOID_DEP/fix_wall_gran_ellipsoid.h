@@ -3,6 +3,9 @@
    Flat walls (planes normal to x, y or z) for general ellipsoids: the kernel's exact
    ellipsoid-plane contact and the SAME force law as pair granular/ellipsoid (ForceLaw,
    parsed by parse_force_law from the pair_coeff words). See doc/fix_wall_gran_ellipsoid.rst.
+   The base of fix wall/gran/region/ellipsoid, whose walls are a region's faces: the force
+   law's words, the per-atom history per wall, the contacts array and the force loop are
+   this class's; the walls' source and motion are the hooks below.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_WALL_GRAN_ELLIPSOID_H
@@ -14,6 +17,7 @@
 #include "ellipsoid_wall_contact.h"
 #include "granular_contact_time.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -26,6 +30,7 @@ class FixWallGranEllipsoid : public Fix {
   void init() override;
   void setup(int) override;
   void post_force(int) override;
+  void post_run() override;
   double compute_vector(int) override;
   double memory_usage() override;
 
@@ -44,7 +49,23 @@ class FixWallGranEllipsoid : public Fix {
   // the walls' law (fix pour/ellipsoid checks the time step of its particles against it)
   const EllipsoidDep::ForceLaw &force_law() const { return law; }
 
- private:
+ protected:
+  // region_style: the words of fix wall/gran/region/ellipsoid (region ID, no planes, no
+  // wiggle, shear or servo); the derived class builds the walls and calls allocate_walls()
+  FixWallGranEllipsoid(class LAMMPS *, int, char **, bool region_style);
+  void allocate_walls();
+  bool allocated = false;    // allocate_walls() registered the atom callbacks
+  const bool region_style;
+  std::string region_id;    // region_style: the region keyword's value
+  // the hooks: the walls at this step, a wall's velocity at a point of its surface (LAMMPS's
+  // region walls: at the wall's point of the contact), whether atom i can touch the walls
+  virtual void update_walls() { move_walls(); }
+  virtual EllipsoidDep::Vec3 velocity_at(int /*wall*/, const EllipsoidDep::Vec3 & /*point*/) const
+  {
+    return wall_velocity;
+  }
+  virtual bool reaches_walls(int /*i*/) const { return true; }
+
   // the walls' surfaces in the kernel's terms (planes: xplane, yplane, zplane), at this step
   std::vector<EllipsoidDep::WallSurface> walls;
   // wiggle or shear, as fix wall/gran's: every wall of the fix moves along dim; a wiggled
@@ -64,6 +85,9 @@ class FixWallGranEllipsoid : public Fix {
   } motion;
   std::vector<double> rest_offset;     // the walls' offsets when the wiggle's phase is 0
   EllipsoidDep::Vec3 wall_velocity;    // of every wall, at this step
+  int parse_wall_material(int iarg, int narg, char **arg, const EllipsoidDep::ForceLaw &particle_law,
+                          const EllipsoidDep::MaterialLookup &lookup);
+  int parse_plane(int iarg, int narg, char **arg, bool seen[3]);
   int parse_motion(int iarg, int narg, char **arg);
   int parse_servo(int iarg, int narg, char **arg);
   void move_walls();
@@ -83,6 +107,7 @@ class FixWallGranEllipsoid : public Fix {
   std::vector<double> wall_force;        // local sums, 3 per wall
   std::vector<double> wall_force_all;    // summed over ranks
   int force_flag;
+  bigint unconverged = 0, degenerate = 0;    // curved walls' kernel failures in this run
 
   void wall_forces();
   // the law's history of atom i against wall k (null without history)

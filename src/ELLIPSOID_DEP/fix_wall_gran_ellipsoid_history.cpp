@@ -70,9 +70,9 @@ void FixWallGranEllipsoid::unpack_restart(int nlocal, int nth)
   // another tangential model or number of walls in the run that wrote the file
   if (static_cast<int>(extra[nlocal][m]) != size_history + 1)
     error->one(FLERR,
-               "Fix wall/gran/ellipsoid: the restart file holds {} history values per atom, "
+               "Fix {}: the restart file holds {} history values per atom, "
                "this fix needs {} (tangential model or walls changed)",
-               static_cast<int>(extra[nlocal][m]) - 1, size_history);
+               style, static_cast<int>(extra[nlocal][m]) - 1, size_history);
   m++;
   for (int k = 0; k < size_history; k++) history_one[nlocal][k] = extra[nlocal][m++];
 }
