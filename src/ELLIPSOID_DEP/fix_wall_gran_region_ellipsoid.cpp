@@ -132,7 +132,7 @@ void FixWallGranRegionEllipsoid::check_periodic_crossing()
     if (w.shape == WallShape::Plane) continue;
     for (int d = 0; d < 3; d++) {
       if (!domain->periodicity[d]) continue;
-      if (w.shape == WallShape::Cylinder && std::fabs(w.axis[d]) == 1.0) continue;
+      if (w.shape != WallShape::Sphere && std::fabs(w.axis[d]) == 1.0) continue;
       if (w.center[d] - w.radius < domain->boxlo[d] || w.center[d] + w.radius > domain->boxhi[d])
         error->all(FLERR,
                    "Fix wall/gran/region/ellipsoid: region {}'s {} (radius {}) crosses the "

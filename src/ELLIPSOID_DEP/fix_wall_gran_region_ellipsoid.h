@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: fix wall/gran/region/ellipsoid
    LAMMPS's fix wall/gran/region for general ellipsoids: the walls are the faces of a region
-   (block, cylinder, sphere, plane), each the kernel's exact contact of its shape, moved with
+   (block, cylinder, cone, sphere, plane), each the kernel's exact contact of its shape, moved with
    the region's move and rotate keywords. The force law, the history per wall, the contacts
    array and the force loop are fix wall/gran/ellipsoid's (the base). See
    doc/fix_wall_gran_region_ellipsoid.rst.
@@ -32,6 +32,8 @@ class FixWallGranRegionEllipsoid : public FixWallGranEllipsoid {
   std::vector<EllipsoidDep::WallSurface> faces;
   bool motion_reset;    // the restart file's region motion did not match
   std::vector<EllipsoidDep::WallSurface> region_faces();
+  bool cone_from_probes(const std::vector<EllipsoidDep::Vec3> &probes,
+                        EllipsoidDep::WallSurface &w);
   void check_periodic_crossing();
 };
 

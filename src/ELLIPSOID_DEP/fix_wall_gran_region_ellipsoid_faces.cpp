@@ -26,9 +26,70 @@ namespace {
 // LAMMPS's regions put a face given as INF at +-1e20
 constexpr double AT_INFINITY = 1.0e19;
 constexpr double PROBE_CUTOFF = 1.0e30;
-const char *const SUPPORTED = "block, cylinder, sphere and plane";
+const char *const SUPPORTED = "block, cylinder, cone (side in), sphere and plane";
+
+// a cone's side from two lateral contacts (the point on the side, the unit normal into the
+// cone, the local radius) seen from two probes: the axis is the coordinate for which both
+// give the same axis point; false when none does (a probe's foot fell on a rim)
+bool cone_side(const Vec3 xs[2], const Vec3 inwards[2], const double local_radius[2],
+               WallSurface &w)
+{
+  for (int k = 0; k < 3; k++) {
+    Vec3 axis_point[2];
+    for (int p = 0; p < 2; p++) {
+      Vec3 radial = -inwards[p];
+      radial[k] = 0.0;
+      const double length = radial.norm();
+      if (!(length > 0.0)) break;
+      axis_point[p] = xs[p] - local_radius[p] * radial / length;
+      axis_point[p][k] = xs[p][k];
+      if (p == 1) {
+        Vec3 mismatch = axis_point[1] - axis_point[0];
+        mismatch[k] = 0.0;
+        if (mismatch.norm() > 1e-9 * (1.0 + axis_point[0].norm())) break;
+        Vec3 perpendicular = inwards[0];
+        perpendicular[k] = 0.0;
+        w.shape = WallShape::Cone;
+        w.center = axis_point[0];
+        w.axis = Vec3::Unit(k);
+        w.radius = local_radius[0];
+        w.slope = inwards[0][k] / perpendicular.norm();
+        return true;
+      }
+    }
+  }
+  return false;
+}
 
 }    // namespace
+
+// the cone's side from the lateral contacts of probe pairs (the first with each other)
+bool FixWallGranRegionEllipsoid::cone_from_probes(const std::vector<Vec3> &probes,
+                                                  WallSurface &w)
+{
+  auto lateral = [this](const Vec3 &p, Vec3 &xs, Vec3 &inwards, double &local_radius) {
+    double x[3] = {p[0], p[1], p[2]};
+    const int n = region->surface_interior(x, PROBE_CUTOFF);
+    for (int c = 0; c < n; c++) {
+      const Region::Contact &contact = region->contact[c];
+      if (contact.iwall != 2) continue;
+      const Vec3 del(contact.delx, contact.dely, contact.delz);
+      xs = p - del;
+      inwards = del.normalized();
+      local_radius = -0.5 * contact.radius;
+      return true;
+    }
+    return false;
+  };
+  Vec3 xs[2], inwards[2];
+  double local_radius[2];
+  if (!lateral(probes[0], xs[0], inwards[0], local_radius[0])) return false;
+  for (std::size_t p = 1; p < probes.size() && p < 64; p++)
+    if (lateral(probes[p], xs[1], inwards[1], local_radius[1]) &&
+        cone_side(xs, inwards, local_radius, w))
+      return true;
+  return false;
+}
 
 std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
 {
@@ -42,7 +103,8 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
     return false;
   };
   const std::string shape = region->style;
-  if (shape != "block" && shape != "cylinder" && shape != "sphere" && shape != "plane")
+  if (shape != "block" && shape != "cylinder" && shape != "cone" && shape != "sphere" &&
+      shape != "plane")
     error->all(FLERR,
                "Fix wall/gran/region/ellipsoid: region {} is of style {}; the supported region "
                "styles are {}",
@@ -56,26 +118,33 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
 
   // a probe point inside the region's shape, off its centre and axes: a grid over the box
   // at irrational fractions, in the region's own frame
-  double probe[3] = {0.0, 0.0, 0.0};
-  bool found = false;
-  for (int i = 0; i < 9 && !found; i++)
-    for (int j = 0; j < 9 && !found; j++)
-      for (int k = 0; k < 9 && !found; k++) {
+  std::vector<Vec3> probes;
+  for (int i = 0; i < 9; i++)
+    for (int j = 0; j < 9; j++)
+      for (int k = 0; k < 9; k++) {
         const int index[3] = {i, j, k};
+        double x[3];
         for (int d = 0; d < 3; d++)
-          probe[d] = domain->boxlo[d] + (index[d] + 0.5 + 0.1 * M_SQRT2 * (d + 1)) / 9.0 *
-                  domain->prd[d];
-        region->inverse_transform(probe[0], probe[1], probe[2]);
-        found = region->inside(probe[0], probe[1], probe[2]) != 0;
+          x[d] = domain->boxlo[d] +
+              (index[d] + 0.5 + 0.1 * M_SQRT2 * (d + 1)) / 9.0 * domain->prd[d];
+        region->inverse_transform(x[0], x[1], x[2]);
+        if (region->inside(x[0], x[1], x[2])) probes.emplace_back(x[0], x[1], x[2]);
       }
-  if (!found)
+  if (probes.empty())
     error->all(FLERR, "Fix wall/gran/region/ellipsoid: region {}'s shape lies outside the box",
                region_id);
-  const int ncontact = region->surface_interior(probe, PROBE_CUTOFF);
+  if (shape == "cone" && !inside)
+    error->all(FLERR,
+               "Fix wall/gran/region/ellipsoid: region {} is a cone with side out; a cone is "
+               "supported with side in (a hopper)",
+               region_id);
+  double probe[3] = {probes[0][0], probes[0][1], probes[0][2]};
+  // a copy: the cone's probes below ask the region again
+  const std::vector<Region::Contact> contacts(
+      region->contact, region->contact + region->surface_interior(probe, PROBE_CUTOFF));
 
   std::vector<std::pair<int, WallSurface>> found_faces;
-  for (int c = 0; c < ncontact; c++) {
-    const Region::Contact &contact = region->contact[c];
+  for (const Region::Contact &contact : contacts) {
     const Vec3 del(contact.delx, contact.dely, contact.delz);
     const Vec3 point = Vec3(probe[0], probe[1], probe[2]) - del;    // on the face
     const Vec3 inwards = del.normalized();
@@ -93,6 +162,10 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
       // outside a block or a cylinder, a face beyond the box holds nothing in it (its plane
       // would reach into the box)
       if (!inside && shape != "plane" && !within_box(w)) continue;
+    } else if (shape == "cone") {
+      if (!cone_from_probes(probes, w))
+        error->all(FLERR, "Fix wall/gran/region/ellipsoid: cannot find region {}'s cone axis",
+                   region_id);
     } else {
       // LAMMPS's interior contact radius: -R for a sphere, -2R for a cylinder's side
       w.shape = shape == "sphere" ? WallShape::Sphere : WallShape::Cylinder;

@@ -22,6 +22,7 @@
 #include "ellipsoid_plane_contact.h"
 #include "ellipsoid_sphere_contact.h"
 #include "ellipsoid_cylinder_contact.h"
+#include "ellipsoid_cone_contact.h"
 #include "ellipsoid_shape.h"
 #include "ellipsoid_wall_contact.h"
 #include "ellipsoid_wang.h"

@@ -18,7 +18,7 @@
      region convention (wall_effective_radius, ellipsoid_shape.h).
 
    Degenerate cases: those of the shape's contact (ellipsoid_plane_contact.h,
-   ellipsoid_sphere_contact.h, ellipsoid_cylinder_contact.h).
+   ellipsoid_sphere_contact.h, ellipsoid_cylinder_contact.h, ellipsoid_cone_contact.h).
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_WALL_CONTACT_H
@@ -31,16 +31,18 @@ namespace EllipsoidDep {
 enum class WallShape {
   Plane,         // the solid half-space {x : normal.x <= offset}
   Sphere,        // the sphere |x - center| = radius; inside: particles in the ball
-  Cylinder       // the infinite cylinder through center along axis; inside: particles in it
+  Cylinder,      // the infinite cylinder through center along axis; inside: particles in it
+  Cone           // particles inside rho = radius + slope s about center, axis (s along axis)
 };
 
 struct WallSurface {
   WallShape shape = WallShape::Plane;
   Vec3 normal = Vec3::UnitZ();    // Plane: unit, into the particle region
   double offset = 0.0;            // Plane: where the solid ends along normal
-  Vec3 center = Vec3::Zero();     // Sphere: centre; Cylinder: a point of the axis
-  Vec3 axis = Vec3::UnitZ();      // Cylinder: unit axis
-  double radius = 0.0;            // Sphere, Cylinder
+  Vec3 center = Vec3::Zero();     // Sphere: centre; Cylinder, Cone: a point of the axis
+  Vec3 axis = Vec3::UnitZ();      // Cylinder, Cone: unit axis
+  double radius = 0.0;            // Sphere, Cylinder; Cone: its radius at center
+  double slope = 0.0;             // Cone: d rho / d s
   bool inside = true;             // Sphere, Cylinder: the particles' side
 };
 

@@ -194,6 +194,61 @@ TEST(WallShapes, CylinderAgainstBruteForce)
   }
 }
 
+TEST(WallShapes, ConeAgainstBruteForce)
+{
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double a[3] = {-0.2, 0.4, 0.1};
+  for (int k = 0; k < CASES; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    // hoppers from steep to flat (half-angles 0 to about 63 degrees, either way up), the apex
+    // far from the particle
+    const double radius = 4.0, slope = 4.0 * (u(rng) - 0.5);
+    Vec3 axis(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    axis.normalize();
+    const double s = 0.8 * (u(rng) - 0.5);
+    // a centre within a semi-axis or so of the side, measured normal to it
+    const Vec3 radial = axis.unitOrthogonal();
+    const double cosine = 1.0 / std::sqrt(1.0 + slope * slope);
+    const double depth = 1.2 * u(rng);
+    const Vec3 side = Vec3(a[0], a[1], a[2]) + s * axis + (radius + slope * s) * radial;
+    const Vec3 inward = cosine * (slope * axis - radial);
+    const Vec3 c = side + depth * inward;
+    for (int d = 0; d < 3; d++) r.c[d] = c[d];
+    WallSurface w;
+    w.shape = WallShape::Cone;
+    w.center = Vec3(a[0], a[1], a[2]);
+    w.axis = axis;
+    w.radius = radius;
+    w.slope = slope;
+    const V3L ax{axis[0], axis[1], axis[2]};
+    // the depth beyond the side, normal to it, and the wall's normal there
+    auto parts = [&](const V3L &p, LD &along, V3L &perp) {
+      V3L v{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+      along = v[0] * ax[0] + v[1] * ax[1] + v[2] * ax[2];
+      for (int d = 0; d < 3; d++) perp[d] = v[d] - along * ax[d];
+    };
+    const LD cos_l = 1 / std::sqrt(1 + (LD) slope * slope);
+    expect_matches_oracle(
+        r, w,
+        [&](const V3L &p) {
+          LD along;
+          V3L perp;
+          parts(p, along, perp);
+          return (norm3(perp) - radius - slope * along) * cos_l;
+        },
+        [&](const V3L &p) {
+          LD along;
+          V3L perp;
+          parts(p, along, perp);
+          const LD l = norm3(perp);
+          V3L n;
+          for (int d = 0; d < 3; d++) n[d] = (perp[d] / l - slope * ax[d]) * cos_l;
+          return n;
+        });
+  }
+}
+
 // a sphere: LAMMPS's region geometry in closed form, R* by its -2R / -R convention
 TEST(WallShapes, SphereParticleClosedForm)
 {

