@@ -79,7 +79,7 @@ def ellipsoids_in_cylinder(lmp, law):
     """Four tilted triaxial ellipsoids falling in a cylinder that moves along x."""
     lmp.commands_string(scenes.particle_box("ellipsoid", 0.0, 4.0, boundary="f f f"))
     rng = np.random.default_rng(5)
-    for k, p in enumerate([(2.9, 2.0, 0.9), (1.2, 2.2, 0.8), (2.0, 2.9, 1.2), (2.0, 1.1, 1.5)]):
+    for k, p in enumerate([(3.2, 2.0, 0.9), (0.85, 2.2, 0.8), (2.0, 3.2, 1.2), (2.0, 0.85, 1.5)]):
         lmp.command(f"create_atoms 1 single {p[0]} {p[1]} {p[2]}")
         q = rng.normal(size=4)
         lmp.command(f"set atom {k + 1} shape 0.5 0.3 0.16")
@@ -91,7 +91,7 @@ def ellipsoids_in_cylinder(lmp, law):
         region r cylinder z 2 2 1.4 0.5 3.5 move v_dx NULL NULL
         pair_style granular/ellipsoid
         pair_coeff * * {law}
-        fix g all gravity 9.81 vector 0 0 -1
+        fix g all gravity 9.81 vector 0.4 0 -1
         fix i all nve/asphere
         fix w all wall/gran/region/ellipsoid {law} region r
         timestep 1e-4
@@ -108,11 +108,12 @@ def test_history_and_motion_survive_restart(tmp_path):
     lmp.command("run 1500")
     restart = tmp_path / "wall.restart"
     lmp.command(f"write_restart {restart}")
-    touching = lmp.numpy.extract_fix("w", 0, 1)    # the force on each face
+    # the force on each face: the lo cap, the hi cap, the side
+    touching = np.array([lmp.extract_fix("w", 0, 1, k) for k in range(9)])
     lmp.command("run 300")
     ref = h.snapshot(lmp, tmp_path, "ref")
     lmp.close()
-    assert np.abs(touching).max() > 0.0
+    assert abs(touching[2]) > 0.0 and np.abs(touching[6:]).max() > 0.0    # floor and side
 
     lmp = h.new_lammps(tmp_path, "b")
     lmp.commands_string(f"""
@@ -121,7 +122,7 @@ def test_history_and_motion_survive_restart(tmp_path):
         pair_coeff * * {law}
         variable dx equal 0.2*time
         region r cylinder z 2 2 1.4 0.5 3.5 move v_dx NULL NULL
-        fix g all gravity 9.81 vector 0 0 -1
+        fix g all gravity 9.81 vector 0.4 0 -1
         fix i all nve/asphere
         fix w all wall/gran/region/ellipsoid {law} region r
         timestep 1e-4
