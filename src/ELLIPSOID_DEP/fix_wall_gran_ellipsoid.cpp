@@ -77,9 +77,10 @@ void FixWallGranEllipsoid::update_contact_times()
 
 /* ----------------------------------------------------------------------
    Planes: a wall cutting through a particle's centre is an error (the contact would be
-   meaningless). A region: a particle whose centre lies outside it is left alone (as LAMMPS's
-   fix wall/gran/region does), with a warning that says how many. Both: an overlap deeper than
-   half the smallest semi-axis is a warning.
+   meaningless); an overlap deeper than half the smallest semi-axis is a warning. A region, at
+   its first run: a warning with the number of particles the wall starts inside, of those
+   whose centres lie outside it (left alone, as LAMMPS's fix wall/gran/region does) and of the
+   deep overlaps.
 ------------------------------------------------------------------------- */
 
 void FixWallGranEllipsoid::setup(int vflag)
@@ -116,7 +117,8 @@ void FixWallGranEllipsoid::setup(int vflag)
   if (all[0] > 0.0 && !region_style)
     error->all(FLERR, "{}: {:.0f} particle centre(s) lie on the solid side of a wall", label,
                all[0]);
-  if (comm->me == 0) {
+  // a region wall's warnings at its first run only: later runs continue resting contacts
+  if (comm->me == 0 && !(region_style && setup_reported)) {
     if (all[0] > 0.0)
       error->warning(FLERR,
                      "{}: {:.0f} particle centre(s) lie outside region {}; the wall leaves them "
@@ -130,6 +132,8 @@ void FixWallGranEllipsoid::setup(int vflag)
                      "semi-axis at setup",
                      label, all[1]);
   }
+
+  setup_reported = true;
 
   // setup forces must not advance the law's history
   history_update = false;

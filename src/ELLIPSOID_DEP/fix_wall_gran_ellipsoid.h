@@ -55,6 +55,7 @@ class FixWallGranEllipsoid : public Fix {
   FixWallGranEllipsoid(class LAMMPS *, int, char **, bool region_style);
   void allocate_walls();
   bool allocated = false;    // allocate_walls() registered the atom callbacks
+  bool setup_reported = false;    // the first run's setup checks were reported
   const bool region_style;
   std::string region_id;    // region_style: the region keyword's value
   // the hooks: the walls at this step, a wall's velocity at a point of its surface (LAMMPS's

@@ -1,5 +1,5 @@
 """fix wall/gran/region/ellipsoid: bad input gets an ERROR that names it (issue 30, item 7),
-a wall that starts inside particles a WARNING that says how many, and the wall contacts'
+a wall that starts inside particles a WARNING that says how many (at its first run), and the wall contacts'
 history and the region's motion survive write_restart/read_restart."""
 import re
 
@@ -68,10 +68,12 @@ def test_wall_inside_particles_is_a_warning_that_counts_them(tmp_path):
         region r cylinder z 2 2 1.5 0.5 3.5
         fix w all wall/gran/region/ellipsoid {LAW} region r
         run 0 post no
+        run 0 post no
         """)
     log = h.read_log(lmp)
     lmp.close()
-    assert "the wall starts inside 3 particle(s)" in log
+    # once, at the first run (a later run continues the resting contacts)
+    assert log.count("the wall starts inside 3 particle(s)") == 1
     assert "1 particle centre(s) lie outside region r" in log
 
 
