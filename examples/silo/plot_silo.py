@@ -1,0 +1,83 @@
+"""Fit Janssen's law to silo.dat files of run_silo.py and plot them.
+
+    ./ellipsoid-dep python examples/silo/plot_silo.py --R 2.5 --mu_w 0.5 \
+        --run "ellipsoids eta 1.4 zeta 1.8" DIR1 --run spheres DIR2 --figure silo.png
+
+Janssen: sigma(H) = rho_b g lambda (1 - exp(-H / lambda)), lambda = R / (2 K mu_w), rho_b g
+the bulk weight density (the weight over pi R^2 H at the last stage). Two fits (scipy's
+curve_fit, standard errors from its covariance): Janssen's own, lambda alone with rho_b g
+measured; and a free amplitude, sigma = A (1 - exp(-H / lambda)), whose A / (rho_b g lambda)
+would be 1 if the data followed Janssen's form. K mu_w = R / (2 lambda) is the product the
+floor's stress measures; K = R / (2 lambda mu_w) assumes the wall friction fully mobilised (a
+lower bound otherwise). The rms residuals say how well each form fits.
+"""
+import argparse
+import math
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt    # noqa: E402
+import numpy as np                 # noqa: E402
+from scipy.optimize import curve_fit    # noqa: E402
+
+
+def janssen(h, a, lam):
+    return a * (1.0 - np.exp(-h / lam))
+
+
+def fit(path, radius, mu_w):
+    data = np.loadtxt(f"{path}/silo.dat", ndmin=2)
+    h, sigma, weight = data[:, 2], data[:, 3], data[:, 6]
+    if len(h) < 3:
+        sys.exit(f"plot_silo.py: {path}/silo.dat has {len(h)} stages; the fit needs 3")
+    rho_g = weight[-1] / (math.pi * radius**2 * h[-1])
+    (lam1,), cov1 = curve_fit(lambda x, lam: janssen(x, rho_g * lam, lam), h, sigma,
+                              p0=(radius,))
+    dlam1 = math.sqrt(cov1[0, 0])
+    (a, lam), cov = curve_fit(janssen, h, sigma, p0=(rho_g * radius, radius))
+    da, dlam = np.sqrt(np.diag(cov))
+    k_mu = radius / (2.0 * lam1)
+    return dict(h=h, sigma=sigma, rho_g=rho_g, lam1=lam1, dlam1=dlam1, k_mu=k_mu,
+                dk_mu=k_mu * dlam1 / lam1, k=k_mu / mu_w, dk=k_mu / mu_w * dlam1 / lam1,
+                rms1=np.sqrt(np.mean((janssen(h, rho_g * lam1, lam1) - sigma) ** 2)),
+                a=a, da=da, lam=lam, dlam=dlam, k_mu_free=radius / (2.0 * lam),
+                rms=np.sqrt(np.mean((janssen(h, a, lam) - sigma) ** 2)),
+                check=a / (rho_g * lam))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--R", type=float, required=True)
+    p.add_argument("--mu_w", type=float, required=True)
+    p.add_argument("--run", nargs=2, action="append", metavar=("LABEL", "DIR"), required=True)
+    p.add_argument("--figure", required=True)
+    a = p.parse_args()
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    for (label, path), colour in zip(a.run, ("C0", "C1", "C2", "C3")):
+        r = fit(path, a.R, a.mu_w)
+        print(f"{label}: rho_b g {r['rho_g']:.4f}; Janssen: lambda {r['lam1']:.2f} +- "
+              f"{r['dlam1']:.2f} d, K mu_w {r['k_mu']:.3f} +- {r['dk_mu']:.3f}, K (mu_w "
+              f"{a.mu_w} mobilised) {r['k']:.2f} +- {r['dk']:.2f}, rms {r['rms1']:.3f}; free "
+              f"amplitude: A {r['a']:.3f} +- {r['da']:.3f}, lambda {r['lam']:.2f} +- "
+              f"{r['dlam']:.2f} d, K mu_w {r['k_mu_free']:.3f}, A / (rho_b g lambda) "
+              f"{r['check']:.2f}, rms {r['rms']:.3f}")
+        ax.plot(r["h"], r["sigma"], "o", color=colour, label=label)
+        hh = np.linspace(0.0, r["h"].max() * 1.05, 200)
+        ax.plot(hh, janssen(hh, r["rho_g"] * r["lam1"], r["lam1"]), "-", color=colour,
+                label=f"Janssen, $\\lambda$ = {r['lam1']:.1f} d, K$\\mu_w$ = {r['k_mu']:.2f}")
+        ax.plot(hh, janssen(hh, r["a"], r["lam"]), "--", color=colour, lw=1,
+                label=f"free amplitude, $\\lambda$ = {r['lam']:.1f} d")
+        ax.plot(hh, r["rho_g"] * hh, ":", color=colour, lw=1)
+    ax.set_xlabel("fill height H / d")
+    ax.set_ylabel(r"floor stress $\sigma_{zz}$ / ($\rho g d$)")
+    ax.set_title(f"silo R = {a.R} d, wall friction {a.mu_w} (dotted: hydrostatic)", fontsize=9)
+    ax.set_ylim(bottom=0.0)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(a.figure, dpi=150)
+
+
+if __name__ == "__main__":
+    main()
