@@ -45,23 +45,23 @@ struct OracleResult {
   V3L point;
 };
 
-// the largest depth over the surface: a 90 x 180 grid, then pattern search from the best
+// the largest depth over the surface: a 60 x 120 grid, then pattern search from the best
 // eight grid points
 OracleResult deepest(const RawEllipsoid &r, const std::function<LD(const V3L &)> &depth)
 {
   const LD pi = 3.141592653589793238462643383279502884L;
   struct Start { LD d, t, p; };
   std::vector<Start> grid;
-  for (int i = 0; i <= 90; i++)
-    for (int j = 0; j < 180; j++) {
-      const LD t = pi * i / 90, p = 2 * pi * j / 180;
+  for (int i = 0; i <= 60; i++)
+    for (int j = 0; j < 120; j++) {
+      const LD t = pi * i / 60, p = 2 * pi * j / 120;
       grid.push_back({depth(surface_point(r, t, p)), t, p});
     }
   std::partial_sort(grid.begin(), grid.begin() + 8, grid.end(),
                     [](const Start &a, const Start &b) { return a.d > b.d; });
   OracleResult best{-1e300L, {}};
   for (int s = 0; s < 8; s++) {
-    LD t = grid[s].t, p = grid[s].p, d = grid[s].d, step = pi / 90;
+    LD t = grid[s].t, p = grid[s].p, d = grid[s].d, step = pi / 60;
     while (step > 1e-15L) {
       bool moved = false;
       for (const auto &dir : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1},

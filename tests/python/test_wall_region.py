@@ -1,7 +1,7 @@
 """fix wall/gran/region/ellipsoid against LAMMPS's fix wall/gran/region (sphere limit).
 
-Spheres placed against a region's faces (side, caps, edges and corners inside the region,
-one sphere whose centre lies outside it, one free) get the forces and torques of LAMMPS's
+Spheres placed against a region's faces (side, caps, edges and corners inside the region;
+a ball and a post from outside; one sphere whose centre the region does not match, one free) get the forces and torques of LAMMPS's
 fix wall/gran/region with the same region and the mapped law: hertz/material E nu e here is
 LAMMPS's `granular hertz/material E e nu damping coeff_restitution tangential
 linear_nohistory 0 0` (doc/pair_granular_ellipsoid.rst). The wall's contact radius is
@@ -77,6 +77,33 @@ def cone_positions():
     return "region r cone z 2 2 0.6 1.6 0.5 3.5", pos
 
 
+def outside_positions(shape):
+    """Around a ball (radius 1) or a post (an infinite z cylinder, radius 0.8) from outside:
+    touching at several directions, one free, and one centre inside the solid (left alone)."""
+    rng = np.random.default_rng(11)
+    pos = []
+    for k in range(6):
+        u = rng.normal(size=3)
+        if shape == "post":
+            u[2] = 0.0
+        u /= np.linalg.norm(u)
+        big = 1.0 if shape == "ball" else 0.8
+        p = np.array([2.0, 2.0, 2.0 + (0.3 * k - 0.75 if shape == "post" else 0.0)])
+        pos.append(tuple(p + (big + RADIUS - 0.002 * (k + 1)) * u))
+    pos += [(3.6, 3.6, 3.6), (2.0, 2.1, 2.0)]
+    region = ("region r sphere 2 2 2 1.0 side out" if shape == "ball"
+              else "region r cylinder z 2 2 0.8 INF INF side out")
+    return region, pos
+
+
+def ball_positions():
+    return outside_positions("ball")
+
+
+def post_positions():
+    return outside_positions("post")
+
+
 def build(style, region, positions, extra=""):
     lmp = new_lammps()
     lmp.commands_string(scenes.spheres_in_box(style, BOX, positions, RADIUS))
@@ -123,7 +150,7 @@ def compare(region, positions, extra="", steps=(0, 20, 20, 20)):
 
 
 @pytest.mark.parametrize("case", [cylinder_positions, block_positions, sphere_positions,
-                                  cone_positions])
+                                  cone_positions, ball_positions, post_positions])
 def test_resting_region_matches_fix_wall_gran_region(case):
     region, positions = case()
     touching = compare(region, positions)
