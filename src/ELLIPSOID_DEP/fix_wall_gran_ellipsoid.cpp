@@ -151,7 +151,6 @@ void FixWallGranEllipsoid::post_force(int /*vflag*/)
 void FixWallGranEllipsoid::wall_forces()
 {
   force_flag = 0;
-  const std::string label = fmt::format("Fix {}", style);
   // a servo moves at time steps only (setup forces look without moving anything)
   if (history_update || motion.kind != Motion::Kind::Servo) update_walls();
   std::fill(wall_force.begin(), wall_force.end(), 0.0);
@@ -171,7 +170,8 @@ void FixWallGranEllipsoid::wall_forces()
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     // an atom inserted during the run without a shape (fix deposit): the walls would let it go
-    if (!atoms.has_shape(i)) atoms.missing_shape(lmp, label.c_str(), i, groupbit);
+    if (!atoms.has_shape(i))
+      atoms.missing_shape(lmp, fmt::format("Fix {}", style).c_str(), i, groupbit);
     if (!reaches_walls(i)) continue;
     const double bound = atoms.bounding_radius(i);
     bool built = false, moving = false;

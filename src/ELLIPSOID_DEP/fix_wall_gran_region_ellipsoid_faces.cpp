@@ -116,22 +116,25 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
                region_id);
   const bool inside = region->interior != 0;
 
-  // a probe point inside the region's shape, off its centre and axes: a grid over the box
+  // probe points inside the region's shape, off its centre and axes: a grid over the box
   // at irrational fractions, in the region's own frame
   std::vector<Vec3> probes;
-  for (int i = 0; i < 9; i++)
-    for (int j = 0; j < 9; j++)
-      for (int k = 0; k < 9; k++) {
+  constexpr int GRID = 25;
+  for (int i = 0; i < GRID; i++)
+    for (int j = 0; j < GRID; j++)
+      for (int k = 0; k < GRID; k++) {
         const int index[3] = {i, j, k};
         double x[3];
         for (int d = 0; d < 3; d++)
           x[d] = domain->boxlo[d] +
-              (index[d] + 0.5 + 0.1 * M_SQRT2 * (d + 1)) / 9.0 * domain->prd[d];
+              (index[d] + 0.5 + 0.03 * M_SQRT2 * (d + 1)) / GRID * domain->prd[d];
         region->inverse_transform(x[0], x[1], x[2]);
         if (region->inside(x[0], x[1], x[2])) probes.emplace_back(x[0], x[1], x[2]);
       }
   if (probes.empty())
-    error->all(FLERR, "Fix wall/gran/region/ellipsoid: region {}'s shape lies outside the box",
+    error->all(FLERR,
+               "Fix wall/gran/region/ellipsoid: no point of a 25^3 grid over the box lies in "
+               "region {}'s shape (outside the box, or smaller than the grid's spacing)",
                region_id);
   if (shape == "cone" && !inside)
     error->all(FLERR,

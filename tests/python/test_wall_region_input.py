@@ -137,3 +137,27 @@ def test_history_and_motion_survive_restart(tmp_path):
     assert "inconsistent with restart file" not in log
     np.testing.assert_allclose(cont["x3"], ref["x3"], rtol=0, atol=1e-12)
     np.testing.assert_allclose(cont["v3"], ref["v3"], rtol=0, atol=1e-10)
+
+
+def test_a_particle_out_through_an_open_face_is_free():
+    """A hopper open at its outlet (cone, open 1): a sphere inside feels the side, one whose
+    centre has left through the outlet feels nothing, though the side's cone continued below
+    the outlet would cut it (the region counts as closed for where a centre is)."""
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(scenes.spheres_in_box(
+            "ellipsoid", (4, 4, 4), [(2.43, 2.0, 1.2), (2.3, 2.0, 0.7)], RADIUS))
+        lmp.commands_string(f"""
+            region r cone z 2 2 0.5 1.5 1.0 3.5 open 1
+            fix w all wall/gran/region/ellipsoid {LAW} region r
+            run 0 post no
+            """)
+        f = np.array(lmp.numpy.extract_atom("f")[:2])
+        side = [lmp.extract_fix("w", 0, 1, k) for k in range(3, 6)]
+        with pytest.raises(Exception, match="out-of-range"):    # two faces: hi cap, side
+            lmp.extract_fix("w", 0, 1, 6)
+    finally:
+        lmp.close()
+    # the side at z: rho = 0.5 + 0.4 (z - 1), the normal tilted by cos(alpha) = 0.928
+    assert np.linalg.norm(f[0]) > 0.0 and np.linalg.norm(side) > 0.0    # 0.139 from the side
+    assert np.linalg.norm(f[1]) == 0.0    # below the outlet, 0.074 from the side continued
