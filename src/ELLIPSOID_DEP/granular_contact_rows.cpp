@@ -43,7 +43,7 @@ void ContactRows::store(LAMMPS *lmp, NeighList *list, const Candidates &candidat
   // the fix's rows are those of the list the rows were loaded from until the next build
   if (lmp->neighbor->lastcall != build_step || lmp->neighbor->ncalls != build_count)
     lmp->error->one(FLERR, "Pair granular/ellipsoid: contact rows not stored before a neighbour "
-                           "list build (internal error)");
+                           "list build (was fix STORE_CONTACT_ROWS_GRANULAR_ELLIPSOID unfixed?)");
   const int inum = list->inum;
   const std::size_t bytes = stride * sizeof(double);
   for (int ii = 0; ii < inum; ii++) {

@@ -92,7 +92,9 @@ PairGranularEllipsoid::~PairGranularEllipsoid()
     modify->delete_fix(HISTORY_DUMMY_ID);
   else
     modify->delete_fix(history_id);
-  modify->delete_fix(fix_store_rows ? ROWS_ID : ROWS_DUMMY_ID);
+  // (an input may have deleted it with unfix)
+  const char *rows_id = fix_store_rows ? ROWS_ID : ROWS_DUMMY_ID;
+  if (modify->get_fix_by_id(rows_id)) modify->delete_fix(rows_id);
 
   if (allocated) {
     memory->destroy(setflag);
