@@ -16,6 +16,7 @@
 #include "fix_pour_ellipsoid.h"
 #include "fix_wall_gran_ellipsoid.h"
 #include "fix_wall_gran_region_ellipsoid.h"
+#include "granular_contact_rows.h"
 #include "pair_granular_ellipsoid.h"
 
 using namespace LAMMPS_NS;
@@ -57,8 +58,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
                  "plane walls for general ellipsoids",
                  (void *) &create_with_args<FixWallGranEllipsoid, Fix>);
   register_style(reg, lmp, handle, "fix", "wall/gran/region/ellipsoid",
-                 "region walls (block, cylinder, sphere, plane) for general ellipsoids",
+                 "region walls (block, cylinder, cone, sphere, plane) for general ellipsoids",
                  (void *) &create_with_args<FixWallGranRegionEllipsoid, Fix>);
+  register_style(reg, lmp, handle, "fix", "STORE_CONTACT_ROWS/ELLIPSOID_DEP",
+                 "pair granular/ellipsoid's contact rows stored back (internal)",
+                 (void *) &create_with_args<FixStoreContactRows, Fix>);
   register_style(reg, lmp, handle, "fix", "nve/ellipsoid",
                  "velocity Verlet for ellipsoids (nve/asphere) that does not rotate spheres",
                  (void *) &create_with_args<FixNVEEllipsoid, Fix>);

@@ -38,6 +38,8 @@ class Candidates {
   // i's candidates (the ii-th atom of the list): count(ii) neighbour indices jj from first(ii)
   const int *first(int ii) const { return jj.data() + start[ii]; }
   int count(int ii) const { return start[ii + 1] - start[ii]; }
+  // the place of i's first candidate among all (offset(inum) candidates in all)
+  int offset(int ii) const { return start[ii]; }
   // pairs set aside at the last search (0: every neighbour is a candidate)
   bigint set_aside() const { return aside; }
   // per owned and ghost atom: 1 when a candidate pair holds it
@@ -53,6 +55,8 @@ class Candidates {
   // default), not under r-RESPA (whose first evaluation after a build does not see the
   // build's positions)
   static bool builds_keep_skin(LAMMPS *lmp, bool respa);
+  // refresh() would find them again
+  bool stale(LAMMPS *lmp, NeighList *list, bool respa) const;
 
  private:
   std::vector<int> jj, start;
@@ -60,7 +64,6 @@ class Candidates {
   bigint step = -1, build_count = -1;    // Neighbor::lastcall and ncalls of the search
   bigint aside = 0;
 
-  bool stale(LAMMPS *lmp, NeighList *list, bool respa) const;
   void find(LAMMPS *lmp, NeighList *list, FixNeighHistory *history, int stride,
             int law_slots, EllipsoidDep::PipelineCounters &counters);
   void all(LAMMPS *lmp, NeighList *list);
@@ -81,10 +84,10 @@ inline bool forget_if_apart(const EllipsoidDep::BoundingTest &t, double *history
 }
 
 /* ----------------------------------------------------------------------
-   the loop over candidates reads each one's history row and state at gaps, which the
-   hardware prefetcher does not follow as it follows a sweep over every neighbour: then every
-   cache line of them is asked for PREFETCH_AHEAD candidates ahead; without gaps the first
-   lines of the next one
+   the loop over candidates reads each one's state at gaps, which the hardware prefetcher does
+   not follow as it follows a sweep over every neighbour: then the state's cache lines are
+   asked for PREFETCH_AHEAD candidates ahead; without gaps the first line of the next one.
+   Their history rows are contiguous (ContactRows): a sweep the hardware follows
 ------------------------------------------------------------------------- */
 
 namespace CandidatePrefetch {
@@ -105,27 +108,20 @@ namespace CandidatePrefetch {
     line(c + n - 1);
   }
 
-  // before candidate k of n (neighbour indices candidates[], neighbours jlist[]): rows of
-  // `stride` doubles from first_history, states of type State
+  // before candidate k of n (neighbour indices candidates[], neighbours jlist[]): states of
+  // type State
   template <class State>
   inline void ahead(int k, int n, bool gaps, const int *candidates, const int *jlist,
-                    const double *first_history, int stride, const State *state, int neighmask)
+                    const State *state, int neighmask)
   {
     if (gaps) {
       if (k == 0)
-        for (int a = 1; a < PREFETCH_AHEAD && a < n; a++) {
-          bytes(first_history + stride * candidates[a], stride * sizeof(double));
+        for (int a = 1; a < PREFETCH_AHEAD && a < n; a++)
           bytes(&state[jlist[candidates[a]] & neighmask], sizeof(State));
-        }
-      if (k + PREFETCH_AHEAD < n) {
-        const int far = candidates[k + PREFETCH_AHEAD];
-        bytes(first_history + stride * far, stride * sizeof(double));
-        bytes(&state[jlist[far] & neighmask], sizeof(State));
-      }
+      if (k + PREFETCH_AHEAD < n)
+        bytes(&state[jlist[candidates[k + PREFETCH_AHEAD]] & neighmask], sizeof(State));
     } else if (k + 1 < n) {
-      const int next = candidates[k + 1];
-      line(first_history + stride * next);
-      line(&state[jlist[next] & neighmask]);
+      line(&state[jlist[candidates[k + 1]] & neighmask]);
     }
   }
 }    // namespace CandidatePrefetch

@@ -27,6 +27,9 @@ using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 
 static const char HISTORY_DUMMY_ID[] = "NEIGH_HISTORY_GRANULAR_ELLIPSOID_DUMMY";
+// the fix that stores the contact rows back, before the history fix (granular_contact_rows.h)
+static const char ROWS_DUMMY_ID[] = "STORE_CONTACT_ROWS_GRANULAR_ELLIPSOID_DUMMY";
+static const char ROWS_ID[] = "STORE_CONTACT_ROWS_GRANULAR_ELLIPSOID";
 // The history fix's ID names its values per pair: read_restart hands a fix the per-atom values
 // of the fix of its ID in the file, and a fix of another size (another layout, or a tangential
 // history added or removed by a pair_style given again after read_restart) would misread them.
@@ -41,6 +44,7 @@ static std::string history_fix_id(int size)
 
 PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
     Pair(lmp), law_index(nullptr), max_bounding_dynamic(nullptr), fix_dummy(nullptr),
+    fix_store_rows(nullptr),
     fix_history(nullptr), size_history(PairHistory::size(0)), history_update(true),
     freeze_group_bit(0), respa_run(false), restart_history_layout(0), restart_history_size(0),
     impact_velocity(0.0), contact_time(0.0), damping_time(0.0)
@@ -71,7 +75,9 @@ PairGranularEllipsoid::PairGranularEllipsoid(LAMMPS *lmp) :
   pvector[NUM_COUNTERS] = pvector[NUM_COUNTERS + 1] = 0.0;
   for (double &c : counters_extracted) c = 0.0;
 
-  // placeholder so the history fix keeps its place in the fix list (as pair granular does)
+  // placeholders so the history fix, and before it the fix that stores the contact rows,
+  // keep their places in the fix list (as pair granular does)
+  modify->add_fix(std::string(ROWS_DUMMY_ID) + " all DUMMY");
   fix_dummy =
       dynamic_cast<FixDummy *>(modify->add_fix(std::string(HISTORY_DUMMY_ID) + " all DUMMY"));
 }
@@ -86,6 +92,9 @@ PairGranularEllipsoid::~PairGranularEllipsoid()
     modify->delete_fix(HISTORY_DUMMY_ID);
   else
     modify->delete_fix(history_id);
+  // (an input may have deleted it with unfix)
+  const char *rows_id = fix_store_rows ? ROWS_ID : ROWS_DUMMY_ID;
+  if (modify->get_fix_by_id(rows_id)) modify->delete_fix(rows_id);
 
   if (allocated) {
     memory->destroy(setflag);
@@ -259,6 +268,12 @@ void PairGranularEllipsoid::init_style()
                restart_history_size, size_history,
                restart_history_size > size_history ? "removed" : "added");
 
+  if (!fix_store_rows)
+    fix_store_rows = dynamic_cast<FixStoreContactRows *>(modify->replace_fix(
+        ROWS_DUMMY_ID, fmt::format("{} all STORE_CONTACT_ROWS/ELLIPSOID_DEP", ROWS_ID), 1));
+  if (!fix_store_rows) error->all(FLERR, "Could not create pair granular/ellipsoid's rows fix");
+  fix_store_rows->pair = this;
+
   if (!fix_history) {
     history_id = history_fix_id(size_history);
     fix_history = dynamic_cast<FixNeighHistory *>(modify->replace_fix(
@@ -386,6 +401,6 @@ double PairGranularEllipsoid::memory_usage()
   return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
                              state_keys.capacity() * sizeof(ShapeKey) +
                              ghost_owner.capacity() * sizeof(int) +
-                             candidates.memory_usage()) +
+                             candidates.memory_usage() + contact_rows.memory_usage()) +
       contacts.memory_usage();
 }

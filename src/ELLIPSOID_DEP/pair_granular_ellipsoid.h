@@ -12,6 +12,7 @@
 #include "ellipsoid_force_law.h"
 #include "ellipsoid_kernel.h"
 #include "granular_candidates.h"
+#include "granular_contact_rows.h"
 #include "granular_contact_time.h"
 #include "granular_ellipsoid_atoms.h"
 #include "granular_ellipsoid_contacts.h"
@@ -50,6 +51,8 @@ class PairGranularEllipsoid : public Pair {
   // The law of types i j, set or mixed (false with the reason when there is none); public for
   // fix pour/ellipsoid's time-step check of the particles it will insert.
   bool law_of_pair(int i, int j, EllipsoidDep::ForceLaw &law, std::string &refusal) const;
+  // the candidates' rows copied back into the history fix's (FixNeighHistoryRows)
+  void store_contact_rows();
 
  protected:
   EllipsoidDep::PipelineSettings pipeline;
@@ -62,6 +65,7 @@ class PairGranularEllipsoid : public Pair {
   double *max_bounding_dynamic;    // per type, largest bounding radius (incl. future pours)
 
   class FixDummy *fix_dummy;
+  FixStoreContactRows *fix_store_rows;    // before fix_history in the fix list
   class FixNeighHistory *fix_history;
   std::string history_id;    // fix_history's ID, which names its size (history_fix_id())
   int size_history;       // EllipsoidDep::PairHistory::size(the largest history of the laws)
@@ -85,6 +89,8 @@ class PairGranularEllipsoid : public Pair {
 
   // the neighbour pairs each force evaluation visits (granular_candidates.h)
   Candidates candidates;
+  // their history rows, contiguous in the loop's order while live (granular_contact_rows.h)
+  ContactRows contact_rows;
   // r-RESPA builds before its inner levels move the atoms, so the first evaluation after a
   // build does not see the build's positions (set by init_style for the run)
   bool respa_run;

@@ -81,6 +81,11 @@ double *PairGranularEllipsoid::pair_history(int i, int jj) const
   return &fix_history->firstvalue[i][size_history * jj];
 }
 
+void PairGranularEllipsoid::store_contact_rows()
+{
+  contact_rows.store(lmp, list, candidates, fix_history);
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::compute(int eflag, int vflag)
@@ -93,8 +98,11 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
     EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid",
                                         atom->nlocal + atom->nghost);
   const int law_slots = pipeline.law_slots;
+  // new candidates without a build between (the fix's rows are still those of the list)
+  if (contact_rows.live() && candidates.stale(lmp, list, respa_run)) store_contact_rows();
   const bool refresh = candidates.refresh(lmp, list, fix_history, size_history, law_slots,
                                           respa_run, counters);
+  if (!contact_rows.live()) contact_rows.load(lmp, list, candidates, fix_history, size_history);
   update_states();
   const bool record = contacts.recording();
   if (record) contacts.start(update->ntimestep);
@@ -118,16 +126,16 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
     const int i = ilist[ii];
     int *jlist = firstneigh[i];
     int *touch = firsttouch[i];
-    double *const first_history = pair_history(i, 0);    // jj's at stride * jj, as pair_history
+    // the k-th candidate's row at stride * k (contiguous over all candidates)
+    double *const first_history = contact_rows.first(candidates.offset(ii));
 
     const int *const first_candidate = candidates.first(ii);
     const int ncandidates = candidates.count(ii);
     for (int k = 0; k < ncandidates; k++) {
       const int jj = first_candidate[k];
       const int j = jlist[jj] & NEIGHMASK;
-      double *history = first_history + stride * jj;
-      CandidatePrefetch::ahead(k, ncandidates, gaps, first_candidate, jlist, first_history,
-                               stride, state, NEIGHMASK);
+      double *history = first_history + stride * k;
+      CandidatePrefetch::ahead(k, ncandidates, gaps, first_candidate, jlist, state, NEIGHMASK);
       // a candidate may still be beyond the bounding spheres: no evaluation to set up for it
       const BoundingTest bounds = bounding_test(state[i].shape, state[j].shape);
       if (forget_if_apart(bounds, history, touch[jj], law_slots, counters)) continue;
@@ -215,6 +223,7 @@ double PairGranularEllipsoid::single(int i, int j, int itype, int jtype, double 
         break;
       }
   }
+  store_contact_rows();    // single() reads the fix's rows
   const PipelineCounters before = counters;
   const ContactGeometry geometry =
       evaluate_pair(states[i].shape, states[j].shape, pipeline, history.data(), counters);
