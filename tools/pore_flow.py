@@ -218,7 +218,7 @@ RESIDUAL = re.compile(r"Solving for (Ux|Uy|Uz|p), Initial residual = ([0-9.eE+-]
 class ResidualMonitor:
     """the initial residuals of each SIMPLE iteration; a progress line every few seconds.
     Once the driven velocity component's is below TOLERANCE it ends simpleFoam (or mpirun)
-    just after the next write of the fields. The other components and p are reported, not
+    once every rank has written the fields the next time. The other components and p are reported, not
     tested: where their exact solution is zero or uniform (a slit, a straight duct) a
     normalised residual is round-off over round-off."""
 
@@ -239,11 +239,13 @@ class ResidualMonitor:
                 self.last_write = WRITE_EVERY * -(-self.iteration // WRITE_EVERY)
             self.completed = self.residuals    # of the iteration just finished
             self.iteration = int(float(line.split()[2]))
-            if self.converged and not self.stopped and self.iteration > self.last_write:
-                self.stopped = True    # the fields of iteration last_write are written
-                self.process.terminate()
             self.residuals = {}
         m = RESIDUAL.search(line)
+        if m and self.converged and not self.stopped and self.iteration > self.last_write:
+            # the first residual of the next iteration is a reduction over all ranks: each
+            # has finished writing the fields of iteration last_write
+            self.stopped = True
+            self.process.terminate()
         if m and m.group(1) not in self.residuals:
             self.residuals[m.group(1)] = float(m.group(2))
         if time.time() - self.last > 10 and self.residuals:
