@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The deposit as a porous medium: porosity, specific surface, pore sizes, permeability.
 
-    ./ellipsoid-dep python tools/pores.py RUN_DIR [--voxel H] [--quiet]
+    ./ellipsoid-dep pores RUN_DIR [--voxel H] [--flow [--flow-voxel H]] [--quiet]
     ./ellipsoid-dep python tools/pores.py --compare OUT.png RUN_DIR [RUN_DIR ...]
 
 Reads RUN_DIR/deposit.dump (the runner's OVITO dump: id type x y z quatw quati quatj quatk
@@ -17,7 +17,8 @@ Exact from the particles: porosity (closed-form ellipsoid-slab volumes) and spec
 image (periodic in x and y): pore size distribution (local thickness from the Euclidean
 distance transform), connectivity from the bottom to the top of the slab, and the voxel
 porosity; these are computed at the voxel size H and at 2 H to show their convergence.
-Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values.
+Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values. With --flow:
+k_xx, k_yy, k_zz from a Stokes-flow solve with OpenFOAM (tools/pore_flow.py).
 
 --compare reads pores.json (running the analysis where it is missing) and packing.dat of
 several run folders and plots porosity, specific surface and permeability against the shape
