@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The deposit as a porous medium: porosity, specific surface, pore sizes, permeability.
 
-    ./ellipsoid-dep python tools/pores.py RUN_DIR [--voxel H] [--quiet]
+    ./ellipsoid-dep pores RUN_DIR [--voxel H] [--flow [--flow-voxel H]] [--quiet]
     ./ellipsoid-dep python tools/pores.py --compare OUT.png RUN_DIR [RUN_DIR ...]
 
 Reads RUN_DIR/deposit.dump (the runner's OVITO dump: id type x y z quatw quati quatj quatk
@@ -17,7 +17,8 @@ Exact from the particles: porosity (closed-form ellipsoid-slab volumes) and spec
 image (periodic in x and y): pore size distribution (local thickness from the Euclidean
 distance transform), connectivity from the bottom to the top of the slab, and the voxel
 porosity; these are computed at the voxel size H and at 2 H to show their convergence.
-Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values.
+Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values. With --flow:
+k_xx, k_yy, k_zz from a Stokes-flow solve with OpenFOAM (tools/pore_flow.py).
 
 --compare reads pores.json (running the analysis where it is missing) and packing.dat of
 several run folders and plots porosity, specific surface and permeability against the shape
@@ -36,8 +37,13 @@ from scipy import ndimage, special
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_packing  # noqa: E402
+from pore_inscribed import largest_inscribed_ball  # noqa: E402
 
-VOXEL_FRACTION = 0.25     # default voxel size: this fraction of the smallest semi-axis
+VOXEL_FRACTION = 0.125    # default voxel size: this fraction of the smallest semi-axis
+BIN_FRACTION = 0.125      # pore-size bins: this fraction of the smallest semi-axis wide
+MAX_VOXEL_FRACTION = 0.5  # larger voxels cannot resolve the thinnest particle dimension
+FLOW_VOXEL_FRACTION = 0.25    # default voxel of the flow solve (doc/howto_pores.md)
+MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thinnest particle
 KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
 QUADRATURE_NODES = (24, 32)    # zone quadrature: Gauss-Legendre in t, trapezoid in phi
 PROGRESS_VOXELS = 2_000_000    # show progress above this many voxels
@@ -286,17 +292,15 @@ def periodic_distance(mask, spacing, reach):
     return d[px:px + mask.shape[0], py:py + mask.shape[1], :]
 
 
-def local_thickness(pore, spacing, radius_max, window, progress):
-    """local thickness of the pore voxels in window (a z slice of the grid): the radius of the
-    largest ball inside the pore space that contains the voxel, on radii k h (h the smallest
-    spacing, k = 1, 2, ...) up to radius_max. A ball of radius r is centred on a voxel whose
-    distance to the solid is >= r; it covers the voxels within r of its centre. Returns
-    (thickness of the window's voxels, distance map of the grid: exact up to radius_max,
-    larger than radius_max where the true distance is)."""
-    distance = periodic_distance(pore, spacing, radius_max)
-    h = min(spacing)
-    radii = h * np.arange(1, int(math.floor(radius_max / h)) + 1)
-    thickness = np.zeros(pore[:, :, window].shape)
+def local_thickness(pore, spacing, radii, window, progress):
+    """local thickness level of the pore voxels in window (a z slice of the grid): the number
+    of the given increasing ball radii (voxel distances) for which a ball inside the pore space
+    contains the voxel. A ball of radius r is centred on a voxel whose distance to the solid is
+    >= r; it covers the voxels within r of its centre. Returns (levels of the window's voxels,
+    distance map of the grid: exact up to the largest radius, larger than it where the true
+    distance is)."""
+    distance = periodic_distance(pore, spacing, radii[-1])
+    level = np.zeros(pore[:, :, window].shape, dtype=int)
     inside = pore[:, :, window]
     for n, r in enumerate(radii):
         # a ball of radius r reaches the window only from centres within r of it
@@ -306,10 +310,10 @@ def local_thickness(pore, spacing, radius_max, window, progress):
         if not centres.any():
             break
         reach = periodic_distance(~centres, spacing, r)[:, :, window.start - lo:window.stop - lo]
-        thickness[(reach <= r) & inside] = r
+        level[(reach <= r) & inside] = n + 1
         if pore.size > PROGRESS_VOXELS and (n + 1) % 5 == 0:
             progress("local thickness: radius %.4g (at most %.4g)" % (r, radii[-1]))
-    return thickness, distance
+    return level, distance
 
 
 def periodic_labels(pore):
@@ -375,8 +379,10 @@ def geometric_tortuosity(pore, spacing):
     return float(length.mean() / ((nz - 1) * spacing[2]))
 
 
-def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
-    """voxel porosity, pore sizes and connectivity of the slab at one voxel size"""
+def analyse_voxels(particles, box, zlo, zhi, voxel, progress, check=True):
+    """voxel porosity, pore sizes and connectivity of the slab at one voxel size; with check,
+    a ValueError if the widest pore is narrower than 2 voxels"""
+    width = BIN_FRACTION * float(particles.semi.min())    # pore-size bins, whatever the voxel
     margin = float(particles.semi.max())    # doubled below while a pore is wider than half
     for _ in range(4):
         grid = Grid(box, zlo, zhi, voxel, margin)
@@ -389,10 +395,13 @@ def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
             grid.nz += 1
             grid.z0 -= grid.hz
         pore = ~solid
-        # the radii that matter: balls centred within margin / 2 of the slab
+        # the radii that matter: balls centred within margin / 2 of the slab; the bin edges
+        # k w are the ball radii, so bin k holds the voxels of local thickness in
+        # [k w, (k + 1) w) whatever the voxel
         radius_max = margin / 2.0
-        thickness, distance = local_thickness(pore, grid.spacing, radius_max, grid.slab,
-                                              progress)
+        h = min(grid.spacing)
+        radii = width * np.arange(1, int(math.floor(radius_max / width)) + 1)
+        level, distance = local_thickness(pore, grid.spacing, radii, grid.slab, progress)
         lo = max(0, grid.slab.start - int(math.ceil(radius_max / grid.hz)))
         hi = min(grid.nz, grid.slab.stop + int(math.ceil(radius_max / grid.hz)))
         if distance[:, :, lo:hi].max() <= radius_max:
@@ -406,25 +415,37 @@ def analyse_voxels(particles, box, zlo, zhi, voxel, progress):
     labels, _ = periodic_labels(slab_pore)
     spanning = np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
                               labels[:, :, -1][labels[:, :, -1] > 0])
-    h = min(grid.spacing)
-    levels = np.rint(thickness[slab_pore] / h).astype(int)
-    counts = np.bincount(levels, minlength=levels.max() + 1)[1:] if npore else np.zeros(0)
-    radius = h * np.arange(1, len(counts) + 1)
+    levels = level[slab_pore]
+    counts = np.bincount(levels) if npore else np.zeros(0)
+    thickness = np.where(pore[:, :, grid.slab], (level + 0.5) * width, 0.0)
+    slab_distance = np.where(slab_pore, distance[:, :, grid.slab], 0.0)
+
+    def centre(index):
+        i, j, k = index
+        return np.array([grid.origin[0] + (i + 0.5) * grid.hx,
+                         grid.origin[1] + (j + 0.5) * grid.hy, zlo + (k + 0.5) * grid.hz])
+
+    inscribed, inscribed_centre = largest_inscribed_ball(
+        particles, box, zlo, zhi, slab_distance, centre, float(slab_distance.max()))
+    if check and inscribed < h:
+        raise ValueError("voxel %.4g too large for the pores: the widest pore (radius %.4g) is "
+                         "under 2 voxels across; give a smaller --voxel" % (voxel, inscribed))
     return {
         "voxel_size": h,
         "voxel_spacing": list(grid.spacing),
         "grid": [grid.nx, grid.ny, grid.nslab],
         "porosity_voxel": npore / slab_pore.size,
-        "largest_inscribed_radius": float(distance[:, :, grid.slab][slab_pore].max()),
-        # the level r_k floors the ball radius (-h/2 on average) while distances to solid
-        # voxel centres exceed those to the surface (+h/2 on average): r_k is the estimate
+        "largest_inscribed_radius": inscribed,
+        "largest_inscribed_centre": None if inscribed_centre is None
+        else inscribed_centre.tolist(),
+        "largest_inscribed_radius_voxel": float(slab_distance.max()),
         "mean_pore_radius": float(thickness[slab_pore].mean()) if npore else 0.0,
         "connected_z": bool(spanning.size > 0),
         "connected_pore_fraction": float(np.isin(labels, spanning).sum() / max(npore, 1)),
         "geometric_tortuosity": geometric_tortuosity(slab_pore, grid.spacing),
-        "pore_size_distribution": {"radius": radius.tolist(),
+        "pore_size_distribution": {"radius": ((np.arange(len(counts)) + 0.5) * width).tolist(),
                                    "volume_fraction": (counts / max(npore, 1)).tolist(),
-                                   "bin_width": h},
+                                   "bin_width": width},
         "margin": margin,
         "_solid_slab": solid[:, :, grid.slab],
         "_thickness": thickness,
@@ -442,10 +463,14 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
     progress = progress or Progress(quiet=True)
     if not zhi > zlo:
         raise ValueError("the slab needs zhi > zlo")
+    smallest = float(particles.semi.min())
     if voxel is None:
-        voxel = VOXEL_FRACTION * float(particles.semi.min())
+        voxel = VOXEL_FRACTION * smallest
     if not voxel > 0:
         raise ValueError("the voxel size must be > 0")
+    if voxel > MAX_VOXEL_FRACTION * smallest:
+        raise ValueError("voxel %.4g too large: at most %g x the smallest semi-axis (%.4g)"
+                         % (voxel, MAX_VOXEL_FRACTION, MAX_VOXEL_FRACTION * smallest))
     area_xy = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0])
     v_slab = area_xy * (zhi - zlo)
     v_solid = float((slab_fraction(particles, zlo, zhi) * particles.volumes).sum())
@@ -455,8 +480,9 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
     progress("exact: porosity %.5f, specific surface %.5g" % (porosity, s_v))
 
     fine = analyse_voxels(particles, box, zlo, zhi, voxel, progress)
-    coarse = analyse_voxels(particles, box, zlo, zhi, 2 * voxel, progress)
-    compared = ("porosity_voxel", "largest_inscribed_radius", "mean_pore_radius", "connected_z",
+    coarse = analyse_voxels(particles, box, zlo, zhi, 2 * voxel, progress, check=False)
+    compared = ("porosity_voxel", "largest_inscribed_radius", "largest_inscribed_radius_voxel",
+                "mean_pore_radius", "connected_z",
                 "connected_pore_fraction", "geometric_tortuosity")
     result = {
         "slab": {"zlo": zlo, "zhi": zhi, "area_xy": area_xy, "volume": v_slab},
@@ -478,8 +504,9 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
         "convergence": {"voxel_size": [fine["voxel_size"], coarse["voxel_size"]]},
     }
     for key in ("voxel_spacing", "grid", "porosity_voxel", "largest_inscribed_radius",
-                "mean_pore_radius", "connected_z", "connected_pore_fraction",
-                "geometric_tortuosity", "pore_size_distribution", "margin"):
+                "largest_inscribed_centre", "largest_inscribed_radius_voxel", "mean_pore_radius",
+                "connected_z", "connected_pore_fraction", "geometric_tortuosity",
+                "pore_size_distribution", "margin"):
         result[key] = fine[key]
     for key in compared:
         result["convergence"][key] = [fine[key], coarse[key]]
@@ -487,6 +514,44 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
     for key in ("_solid_slab", "_thickness", "_grid"):
         result[key] = fine[key]
     return result
+
+
+def flow_permeability(particles, box, zlo, zhi, voxel=None, progress=None, workdir=None,
+                      directions=("xx", "yy", "zz")):
+    """k_xx, k_yy, k_zz of the slab from the Stokes-flow solve (tools/pore_flow.py) on a voxel
+    image of the slab alone, in units of d^2 (d: the mean volume-equivalent diameter)"""
+    import pore_flow
+    pore_flow.require_openfoam()
+    progress = progress or Progress(quiet=True)
+    smallest = float(particles.semi.min())
+    voxel = FLOW_VOXEL_FRACTION * smallest if voxel is None else voxel
+    if not 0 < voxel <= MAX_FLOW_VOXEL_FRACTION * smallest:
+        raise ValueError("flow voxel %.4g: needs 0 < voxel <= %g x the smallest semi-axis (%.4g)"
+                         % (voxel, MAX_FLOW_VOXEL_FRACTION, MAX_FLOW_VOXEL_FRACTION * smallest))
+    grid = Grid(box, zlo, zhi, voxel, margin=0.0)
+    solid = voxelize(particles, grid, progress)[:, :, grid.slab]
+    labels, _ = periodic_labels(~solid)
+    spanning = np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
+                              labels[:, :, -1][labels[:, :, -1] > 0])
+    if not spanning.size:
+        raise ValueError("no connected pore path from the bottom to the top of the slab at the "
+                         "flow voxel %.4g: no flow along z (a smaller --flow-voxel may open one)"
+                         % voxel)
+    # pores off the paths from bottom to top carry no flow, and their pressure equations,
+    # without a reference, would stop the solver: they are filled
+    connected = np.isin(labels, spanning)
+    isolated = float((~solid & ~connected).sum() / max((~solid).sum(), 1))
+    solid = ~connected
+    d = float(np.mean(2.0 * np.cbrt(np.prod(particles.semi, axis=1))))
+    k = pore_flow.permeability(solid, grid.spacing, directions, progress, workdir)
+    out = {key: k[key] / d ** 2 for key in directions}
+    out.update({"units": "d^2", "d": d, "voxel": voxel, "voxels_per_d": d / voxel,
+                "porosity_voxel_connected": float(1.0 - solid.mean()),
+                "isolated_pore_fraction": isolated})
+    for key in ("cells", "residuals", "iterations", "seconds", "ranks", "image_xyz",
+                "tolerance"):
+        out[key] = k[key]
+    return out
 
 
 def write_voxel_image(result, run_dir):
@@ -560,18 +625,30 @@ def public(result):
     return {k: v for k, v in result.items() if not k.startswith("_")}
 
 
-def run_folder(run_dir, voxel=None, quiet=False, picture=True):
+def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_voxel=None):
     """analyse RUN_DIR/deposit.dump in the slab of RUN_DIR/packing.dat; write pores.json,
-    the voxel image and pores.png; return the public result"""
+    the voxel image and pores.png (with flow: the permeability tensor's diagonal from the
+    flow solve too); return the public result"""
     progress = Progress(quiet)
+    for name in ("deposit.dump", "packing.dat"):
+        if not os.path.isfile(os.path.join(run_dir, name)):
+            raise ValueError("%s: no %s (not a finished deposit's run folder)" % (run_dir, name))
     particles, box = read_dump(os.path.join(run_dir, "deposit.dump"))
     pk = read_packing(os.path.join(run_dir, "packing.dat"))
     progress("%d particles, slab z in [%g, %g]" % (len(particles), pk["zlo"], pk["zhi"]))
+    # the flow first: its bad input (no pore path, a voxel too large) ends the run early
+    k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"], flow_voxel, progress)
+         if flow else None)
     result = analyse(particles, box, pk["zlo"], pk["zhi"], voxel, progress)
     if "phi" in pk:
         result["porosity_check"] = {"one_minus_phi_packing_dat": 1.0 - pk["phi"],
                                     "difference": result["porosity"] - (1.0 - pk["phi"])}
     result["voxel_image"] = write_voxel_image(result, run_dir)
+    if k is not None:
+        kc = result["kozeny_carman_permeability"] / k["d"] ** 2
+        k["anisotropy_xx_zz"] = 0.5 * (k["xx"] + k["yy"]) / k["zz"] if k["zz"] > 0 else None
+        k["ratio_to_kozeny_carman"] = {a: k[a] / kc for a in ("xx", "yy", "zz")}
+        result["permeability_flow"] = k
     for key in ("eta", "zeta", "delta_r", "N", "seed"):
         if key in pk:
             result[key] = pk[key]
@@ -653,8 +730,23 @@ def main(argv=None):
     ap.add_argument("--compare", metavar="OUT.png", default=None,
                     help="plot several runs against the shape instead (and write the table "
                          "of means and standard errors to OUT.csv)")
+    ap.add_argument("--flow", action="store_true",
+                    help="also the permeability tensor's diagonal from a Stokes-flow solve "
+                         "(OpenFOAM; ./ellipsoid-dep pores installs it on first use)")
+    ap.add_argument("--flow-voxel", type=float, default=None,
+                    help="voxel size of the flow solve (default %g x the smallest semi-axis)"
+                         % FLOW_VOXEL_FRACTION)
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
+    import pore_flow
+    try:
+        report(ap, args)
+    except (ValueError, OSError, pore_flow.FlowError) as e:
+        print("pores: ERROR: %s" % e, file=sys.stderr)
+        sys.exit(2)
+
+
+def report(ap, args):
     if args.compare:
         for row in compare(args.run_dirs, args.compare, args.voxel, args.quiet):
             print("eta %-5g zeta %-5g runs %d  porosity %.4f  S_v %.4f  k_KC %.4g" % (
@@ -665,12 +757,15 @@ def main(argv=None):
     if len(args.run_dirs) != 1:
         ap.error("one RUN_DIR (or --compare OUT.png RUN_DIR ...)")
     d = args.run_dirs[0]
-    r = run_folder(d, args.voxel, args.quiet)
+    if not os.path.isdir(d):
+        raise ValueError("%s: no such folder" % d)
+    r = run_folder(d, args.voxel, args.quiet, flow=args.flow, flow_voxel=args.flow_voxel)
     c = r["convergence"]
     print("pores: %s (%d particles, slab z in [%.4g, %.4g])"
           % (d, r["particles"], r["slab"]["zlo"], r["slab"]["zhi"]))
-    print("  porosity            %.5f   (1 - phi of packing.dat: %.5f)"
-          % (r["porosity"], r["porosity_check"]["one_minus_phi_packing_dat"]))
+    print("  porosity            %.5f" % r["porosity"] + (
+        "   (1 - phi of packing.dat: %.5f)" % r["porosity_check"]["one_minus_phi_packing_dat"]
+        if "porosity_check" in r else ""))
     print("  specific surface    %.5g per unit length (%.5g per solid volume)"
           % (r["specific_surface"], r["specific_surface_per_solid_volume"]))
     print("  Kozeny-Carman k     %.4g  (K = %g)" % (r["kozeny_carman_permeability"],
@@ -682,6 +777,13 @@ def main(argv=None):
     print("  connected in z      %s, %s" % tuple(c["connected_z"]))
     print("  geometric tortuosity %s, %s" % tuple(
         "none" if t is None else "%.4f" % t for t in c["geometric_tortuosity"]))
+    if "permeability_flow" in r:
+        k = r["permeability_flow"]
+        print("  flow k (d^2)        xx %.4g  yy %.4g  zz %.4g  (voxel d/%.3g, %d + %d cells)"
+              % (k["xx"], k["yy"], k["zz"], k["voxels_per_d"], k["cells"]["xx"],
+                 k["cells"]["zz"]))
+        print("  k / Kozeny-Carman   xx %.3f  yy %.3f  zz %.3f" % tuple(
+            k["ratio_to_kozeny_carman"][a] for a in ("xx", "yy", "zz")))
     print("  files: pores.json pores.png pores_voxels.raw pores_voxels.mhd")
 
 

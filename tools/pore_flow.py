@@ -1,0 +1,342 @@
+"""Permeability of a voxel image from a Stokes-flow solve with OpenFOAM (doc/howto_pores.md).
+
+    permeability(solid, spacing) -> {"xx", "yy", "zz", "residuals", "cells", ...}
+
+solid[i, j, k] (x, y periodic) is True in the solid; the slab is not periodic in z. For flow
+along x and y the slab's planes are symmetry planes (slip walls: the same as continuing the
+slab by its mirror image). For flow along z the image is mirrored in z (the slab followed by
+its mirror image), which makes the domain periodic in z at twice the cells. Mesh: blockMesh
+makes one hexahedral cell per voxel (cyclic patches on the periodic faces); subsetMesh keeps
+the pore voxels and puts the faces it exposes into the wall patch "walls" (the stair-step
+surface of the particles). Flow: simpleFoam (laminar, SIMPLEC) driven by a uniform body force g
+along x, y, z in turn at a Reynolds number far below 1. Darcy's law gives k_ii = nu <u_i> / g
+with <u_i> the superficial (box-averaged) velocity. OpenFOAM is Debian's openfoam (1912), its
+environment sourced in the subshell that runs each utility, every utility under nice -n 10.
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+OPENFOAM_BASHRC = "/usr/share/openfoam/etc/bashrc"
+NU = 1.0                 # kinematic viscosity
+BODY_FORCE = 1.0e-3      # g (pressure gradient per density); Re = <u> L / nu stays << 1
+TOLERANCE = 1.0e-6       # initial residuals of U and p at which the solve stops
+MAX_ITERATIONS = 4000
+WRITE_EVERY = 10         # iterations between writes of the fields (the last one is kept)
+PARALLEL_CELLS = 300_000  # decomposePar onto 2 ranks above this many cells
+DIRECTIONS = {"xx": 0, "yy": 1, "zz": 2}
+NICENESS = 10            # the machine is shared: every OpenFOAM utility runs at this niceness
+
+
+class FlowError(RuntimeError):
+    """a flow solve that cannot run or did not converge (the message says why)"""
+
+
+def require_openfoam():
+    if not os.path.exists(OPENFOAM_BASHRC):
+        raise FlowError("OpenFOAM is not installed (%s missing): `./ellipsoid-dep pores DIR "
+                        "--flow` installs Debian's openfoam on first use (apt-get install "
+                        "openfoam)" % OPENFOAM_BASHRC)
+
+
+def foam(case, command, log=None, on_line=None):
+    """run an OpenFOAM command in case (a subshell with its environment, nice -n 10); the
+    output goes to case/log.<name> and each line to on_line; FlowError on failure"""
+    name = log or command.split()[0]
+    nice = max(0, NICENESS - os.nice(0))    # niceness 10 in all, not 10 more
+    script = ('source %s >/dev/null 2>&1 || true; cd "%s" && exec nice -n %d %s'
+              % (OPENFOAM_BASHRC, case, nice, command))
+    path = os.path.join(case, "log." + name)
+    with open(path, "w") as out:
+        # as the entry script: Open MPI may run as root (containers) and oversubscribe
+        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_rmaps_base_oversubscribe="1")
+        proc = subprocess.Popen(["bash", "-c", script], stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True, env=env)
+        if on_line is not None and hasattr(on_line, "process"):
+            on_line.process = proc    # bash execs the utility (or mpirun): the same pid
+        for line in proc.stdout:
+            out.write(line)
+            if on_line:
+                on_line(line)
+        proc.wait()
+    if proc.returncode != 0 and not getattr(on_line, "stopped", False):
+        with open(path) as f:
+            tail = "".join(f.readlines()[-15:])
+        raise FlowError("OpenFOAM %s failed (exit %d):\n%s" % (name, proc.returncode, tail))
+
+
+def header(cls, obj, location=None):
+    loc = '    location "%s";\n' % location if location else ""
+    return ("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class %s;\n%s"
+            "    object %s;\n}\n" % (cls, loc, obj))
+
+
+def write(case, rel, text):
+    path = os.path.join(case, rel)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def block_mesh_dict(shape, lengths, periodic_z):
+    nx, ny, nz = shape
+    lx, ly, lz = lengths
+    v = [(0, 0, 0), (lx, 0, 0), (lx, ly, 0), (0, ly, 0),
+         (0, 0, lz), (lx, 0, lz), (lx, ly, lz), (0, ly, lz)]
+    pairs = (("left", "(0 4 7 3)", "right", "(1 2 6 5)"),
+             ("front", "(0 1 5 4)", "back", "(3 7 6 2)"),
+             ("bottom", "(0 3 2 1)", "top", "(4 5 6 7)"))
+    patches = ""
+    for a, fa, b, fb in pairs:
+        for me, faces, other in ((a, fa, b), (b, fb, a)):
+            if a == "bottom" and not periodic_z:
+                kind = "symmetryPlane;"
+            else:
+                kind = "cyclic;\n        neighbourPatch %s;" % other
+            patches += ("    %s\n    {\n        type %s\n        faces (%s);\n    }\n"
+                        % (me, kind, faces))
+    patches += "    walls\n    {\n        type wall;\n        faces ();\n    }\n"
+    return (header("dictionary", "blockMeshDict") + "scale 1;\nvertices\n(\n"
+            + "".join("    (%.17g %.17g %.17g)\n" % p for p in v) + ");\n"
+            + "blocks\n(\n    hex (0 1 2 3 4 5 6 7) (%d %d %d) simpleGrading (1 1 1)\n);\n"
+            % (nx, ny, nz) + "edges ();\nboundary\n(\n" + patches + ");\n")
+
+
+def cell_set(labels):
+    return (header("cellSet", "fluid", "constant/polyMesh/sets") + "%d\n(\n" % len(labels)
+            + "\n".join(map(str, labels)) + "\n)\n")
+
+
+CONTROL = """application simpleFoam;
+startFrom latestTime;
+startTime 0;
+stopAt endTime;
+endTime %d;
+deltaT 1;
+writeControl timeStep;
+writeInterval %d;
+purgeWrite 1;
+writeFormat ascii;
+writePrecision 12;
+writeCompression off;
+timeFormat general;
+timePrecision 8;
+runTimeModifiable false;
+"""
+
+SCHEMES = """ddtSchemes { default steadyState; }
+gradSchemes { default Gauss linear; }
+divSchemes { default none; div(phi,U) bounded Gauss linear;
+             div((nuEff*dev2(T(grad(U))))) Gauss linear; }
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+"""
+
+SOLUTION = """solvers
+{
+    p { solver GAMG; smoother GaussSeidel; tolerance 1e-10; relTol 0.01; }
+    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-12; relTol 0.05; }
+}
+SIMPLE
+{
+    nNonOrthogonalCorrectors 0;
+    consistent yes;
+    pRefCell 0;
+    pRefValue 0;
+}
+relaxationFactors { equations { U 0.9; ".*" 0.9; } }
+"""
+
+
+def field(cls, name, dims, value, walls, periodic_z):
+    z = "cyclic" if periodic_z else "symmetryPlane"
+    patches = "".join('    %s { type %s; }\n' % (p, "cyclic" if p in ("left", "right", "front",
+                                                                        "back") else z)
+                      for p in ("left", "right", "front", "back", "bottom", "top"))
+    return (header(cls, name) + "dimensions %s;\ninternalField uniform %s;\n"
+            "boundaryField\n{\n%s    walls { %s }\n}\n" % (dims, value, patches, walls))
+
+
+def mirrored(solid):
+    """the slab followed by its mirror image in z: periodic in z"""
+    return np.concatenate([solid, solid[:, :, ::-1]], axis=2)
+
+
+def setup_case(case, solid, spacing, periodic_z, progress):
+    """the mesh of the pore voxels of the image (z faces cyclic or symmetry planes) and the
+    case files; returns the number of cells"""
+    shape = solid.shape
+    lengths = [n * h for n, h in zip(shape, spacing)]
+    write(case, "system/blockMeshDict", block_mesh_dict(shape, lengths, periodic_z))
+    write(case, "system/controlDict", header("dictionary", "controlDict")
+          + CONTROL % (MAX_ITERATIONS, WRITE_EVERY))
+    write(case, "system/fvSchemes", header("dictionary", "fvSchemes") + SCHEMES)
+    write(case, "system/fvSolution", header("dictionary", "fvSolution")
+          + SOLUTION)
+    write(case, "system/decomposeParDict", header("dictionary", "decomposeParDict")
+          + "numberOfSubdomains 2;\nmethod simple;\n"
+          "simpleCoeffs\n{\n    n (2 1 1);\n    delta 0.001;\n}\n")
+    write(case, "constant/transportProperties", header("dictionary", "transportProperties")
+          + "transportModel Newtonian;\nnu %.17g;\n" % NU)
+    write(case, "constant/turbulenceProperties", header("dictionary", "turbulenceProperties")
+          + "simulationType laminar;\n")
+    progress("flow mesh: blockMesh %d x %d x %d" % shape)
+    foam(case, "blockMesh")
+    # blockMesh numbers the cells x fastest, then y, then z
+    fluid = np.flatnonzero(~solid.transpose(2, 1, 0).ravel())
+    write(case, "constant/polyMesh/sets/fluid", cell_set(fluid))
+    progress("flow mesh: subsetMesh keeps %d pore cells" % len(fluid))
+    foam(case, "subsetMesh fluid -patch walls -overwrite")
+    return len(fluid)
+
+
+def write_start_fields(case, direction, periodic_z):
+    g = [0.0, 0.0, 0.0]
+    g[direction] = BODY_FORCE
+    shutil.rmtree(os.path.join(case, "0"), ignore_errors=True)
+    write(case, "0/U", field("volVectorField", "U", "[0 1 -1 0 0 0 0]", "(0 0 0)",
+                             "type noSlip;", periodic_z))
+    write(case, "0/p", field("volScalarField", "p", "[0 2 -2 0 0 0 0]", "0",
+                             "type zeroGradient;", periodic_z))
+    write(case, "constant/fvOptions", header("dictionary", "fvOptions")
+          + "bodyForce\n{\n    type vectorSemiImplicitSource;\n    selectionMode all;\n"
+          "    volumeMode specific;\n    injectionRateSuSp\n    {\n"
+          "        U ((%.17g %.17g %.17g) 0);\n    }\n}\n" % tuple(g))
+
+
+RESIDUAL = re.compile(r"Solving for (Ux|Uy|Uz|p), Initial residual = ([0-9.eE+-]+)")
+
+
+class ResidualMonitor:
+    """the initial residuals of each SIMPLE iteration; a progress line every few seconds.
+    Once the driven velocity component's is below TOLERANCE it ends simpleFoam (or mpirun)
+    once every rank has written the fields the next time. The other components and p are reported, not
+    tested: where their exact solution is zero or uniform (a slit, a straight duct) a
+    normalised residual is round-off over round-off."""
+
+    def __init__(self, progress, label):
+        self.progress, self.label = progress, label
+        self.driven = "U" + "xyz"[DIRECTIONS[label]]
+        self.iteration, self.residuals, self.last = 0, {}, time.time()
+        self.completed = {}
+        self.converged = False
+        self.stopped = False
+        self.process = None
+        self.last_write = None
+
+    def __call__(self, line):
+        if line.startswith("Time = "):
+            if not self.converged and self.residuals.get(self.driven, 1.0) <= TOLERANCE:
+                self.converged = True
+                self.last_write = WRITE_EVERY * -(-self.iteration // WRITE_EVERY)
+            self.completed = self.residuals    # of the iteration just finished
+            self.iteration = int(float(line.split()[2]))
+            self.residuals = {}
+        m = RESIDUAL.search(line)
+        if m and self.converged and not self.stopped and self.iteration > self.last_write:
+            # the first residual of the next iteration is a reduction over all ranks: each
+            # has finished writing the fields of iteration last_write
+            self.stopped = True
+            self.process.terminate()
+        if m and m.group(1) not in self.residuals:
+            self.residuals[m.group(1)] = float(m.group(2))
+        if time.time() - self.last > 10 and self.residuals:
+            self.last = time.time()
+            self.progress("flow %s: iteration %d, residuals %s" % (self.label, self.iteration, (
+                " ".join("%s %.2e" % kv for kv in sorted(self.residuals.items())))))
+
+
+def read_velocity(case, ncells):
+    """the internal velocity field of the latest time (ascii) -> (ncells, 3)"""
+    times = [d for d in os.listdir(case) if re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"]
+    if not times:
+        raise FlowError("simpleFoam wrote no result")
+    latest = max(times, key=float)
+    with open(os.path.join(case, latest, "U")) as f:
+        text = f.read()
+    m = re.search(r"internalField\s+nonuniform\s+List<vector>\s*(\d+)\s*\(", text)
+    if not m:
+        raise FlowError("cannot read %s/U" % latest)
+    n = int(m.group(1))
+    body = text[m.end():text.index("\n)\n", m.end())]
+    u = np.array(body.replace("(", " ").replace(")", " ").split(), dtype=float).reshape(n, 3)
+    if n != ncells:
+        raise FlowError("U has %d values for %d cells" % (n, ncells))
+    return u, int(float(latest))
+
+
+def solve(case, key, ncells, total, parallel, progress):
+    """one direction on the mesh in case: (k, residuals, iterations)"""
+    a = DIRECTIONS[key]
+    for d in os.listdir(case):
+        if d.startswith("processor") or (re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"):
+            shutil.rmtree(os.path.join(case, d))
+    monitor = ResidualMonitor(progress, key)
+    if parallel:
+        foam(case, "decomposePar -force")
+        foam(case, "mpirun -np 2 simpleFoam -parallel", log="simpleFoam." + key,
+             on_line=monitor)
+        foam(case, "reconstructPar -latestTime")
+    else:
+        foam(case, "simpleFoam", log="simpleFoam." + key, on_line=monitor)
+    u, iterations = read_velocity(case, ncells)
+    residuals = dict(monitor.completed if monitor.stopped else monitor.residuals)
+    if not monitor.converged:
+        raise FlowError("flow %s did not converge in %d iterations (residuals %s)"
+                        % (key, iterations, residuals))
+    return NU * u[:, a].sum() / total / BODY_FORCE, residuals, iterations
+
+
+def permeability(solid, spacing, directions=("xx", "yy", "zz"), progress=None, workdir=None,
+                 periodic_z=False):
+    """k along the given directions (units of spacing^2) of the pore space of solid, periodic
+    in x and y; in z a slab (see above) unless periodic_z (then periodic as given)"""
+    require_openfoam()
+    progress = progress or (lambda msg: None)
+    solid = np.asarray(solid, bool)
+    result = {"voxel_spacing": list(map(float, spacing)), "image_xyz": list(solid.shape),
+              "body_force": BODY_FORCE, "nu": NU, "tolerance": TOLERANCE, "cells": {},
+              "ranks": {}, "residuals": {}, "iterations": {}, "seconds": {}}
+    meshes = {}    # mesh name -> (image, z periodic)
+    for key in directions:
+        if key == "zz" and not periodic_z:
+            meshes.setdefault("mirrored", (mirrored(solid), True, []))[2].append(key)
+        else:
+            meshes.setdefault("slab", (solid, periodic_z, []))[2].append(key)
+    for name, (image, z_cyclic, keys) in meshes.items():
+        case = tempfile.mkdtemp(prefix="pore_flow_", dir=workdir)
+        try:
+            t0 = time.time()
+            ncells = setup_case(case, image, spacing, z_cyclic, progress)
+            parallel = ncells > PARALLEL_CELLS
+            for key in keys:
+                write_start_fields(case, DIRECTIONS[key], z_cyclic)
+                k, residuals, iterations = solve(case, key, ncells, image.size, parallel,
+                                                 progress)
+                result[key] = k
+                result["cells"][key] = ncells
+                result["ranks"][key] = 2 if parallel else 1
+                result["residuals"][key] = residuals
+                result["iterations"][key] = iterations
+                result["seconds"][key] = time.time() - t0
+                progress("flow %s: k = %.5g after %d iterations (%.0f s)"
+                         % (key, k, iterations, result["seconds"][key]))
+                t0 = time.time()
+        finally:
+            shutil.rmtree(case, ignore_errors=True)
+    return result
+
+
+if __name__ == "__main__":    # a quick look: a slit of 8 cells between two solid layers
+    s = np.zeros((2, 2, 10), bool)
+    s[:, :, 0] = s[:, :, -1] = True
+    print(permeability(s, (0.125,) * 3, ("xx",), periodic_z=True,
+                       progress=lambda m: print(m, file=sys.stderr)))

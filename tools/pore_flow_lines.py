@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Permeability of deposits along the study's lines from the flow solve (doc/howto_pores.md).
+
+    ./ellipsoid-dep python tools/pore_flow_lines.py --out results/flow RUN_DIR [RUN_DIR ...]
+        [--flow-voxel-per-d N] [--directions xx,zz]
+
+For each run folder (deposit.dump + packing.dat, read only) the flow solve of
+pores.flow_permeability at the voxel d / N writes OUT/<folder name>.json (skipped when it
+exists: reruns only add what is missing); then OUT/flow_lines.csv (one row per deposit: eta,
+zeta, seed, porosity, k_xx, k_yy, k_zz in d^2, the anisotropy, the ratio to Kozeny-Carman,
+cells, iterations and seconds) and OUT/flow_lines.png (k_xx, k_zz, anisotropy and k_zz / k_KC
+against the aspect ratio, seeds as separate points and their mean).
+"""
+import argparse
+import csv
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pores  # noqa: E402
+
+
+def solve_folder(folder, out, voxel_per_d, directions):
+    path = os.path.join(out, os.path.basename(os.path.normpath(folder)) + ".json")
+    if os.path.exists(path):
+        with open(path) as f:
+            return json.load(f)
+    progress = pores.Progress()
+    particles, box = pores.read_dump(os.path.join(folder, "deposit.dump"))
+    pk = pores.read_packing(os.path.join(folder, "packing.dat"))
+    zlo, zhi = pk["zlo"], pk["zhi"]
+    d = float(np.mean(2.0 * np.cbrt(np.prod(particles.semi, axis=1))))
+    t0 = time.time()
+    k = pores.flow_permeability(particles, box, zlo, zhi, d / voxel_per_d, progress,
+                                directions=directions)
+    v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
+    porosity = 1.0 - (pores.slab_fraction(particles, zlo, zhi) * particles.volumes).sum() / v_slab
+    s_v = pores.slab_surface(particles, zlo, zhi)[0] / v_slab
+    row = {"folder": folder, "eta": pk.get("eta"), "zeta": pk.get("zeta"),
+           "seed": pk.get("seed"), "porosity": porosity, "specific_surface": s_v,
+           "k_kozeny_carman": porosity ** 3 / (pores.KOZENY_CONSTANT * s_v ** 2) / d ** 2,
+           "flow": k, "wall_seconds": time.time() - t0}
+    with open(path, "w") as f:
+        json.dump(row, f, indent=1)
+    return row
+
+
+def table(rows):
+    out = []
+    for r in rows:
+        k = r["flow"]
+        kxx = 0.5 * (k["xx"] + k["yy"]) if "yy" in k else k["xx"]
+        out.append({"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"],
+                    "porosity": r["porosity"], "k_xx": k["xx"], "k_yy": k.get("yy", ""),
+                    "k_zz": k["zz"], "anisotropy": kxx / k["zz"],
+                    "k_zz_over_kozeny_carman": k["zz"] / r["k_kozeny_carman"],
+                    "k_xx_over_kozeny_carman": kxx / r["k_kozeny_carman"],
+                    "voxels_per_d": k["voxels_per_d"],
+                    "cells_xx": k["cells"]["xx"], "cells_zz": k["cells"]["zz"],
+                    "iterations": " ".join("%s:%d" % kv for kv in sorted(k["iterations"].items())),
+                    "seconds": round(r["wall_seconds"])})
+    return sorted(out, key=lambda r: (r["eta"], r["zeta"], r["seed"]))
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    panels = (("k_xx", r"$k_{xx}$ ($d^2$)"), ("k_zz", r"$k_{zz}$ ($d^2$)"),
+              ("anisotropy", r"$k_{xx} / k_{zz}$"),
+              ("k_zz_over_kozeny_carman", r"$k_{zz} / k_{KC}$"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.0 * len(panels), 3.4))
+    x = np.array([r["eta"] for r in rows])
+    for ax, (key, label) in zip(axes, panels):
+        y = np.array([r[key] for r in rows])
+        ax.plot(x, y, "o", mfc="none", color="C0", label="seeds")
+        etas = sorted(set(x))
+        ax.plot(etas, [y[x == e].mean() for e in etas], "-", color="C0", label="mean")
+        ax.set(xlabel=r"$\eta = \zeta$", ylabel=label)
+        ax.legend(fontsize=7)
+    fig.suptitle("flow solve (OpenFOAM simpleFoam), voxel d/%g, diagonal, delta_r = 0"
+                 % rows[0]["voxels_per_d"], fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dirs", nargs="+", metavar="RUN_DIR")
+    ap.add_argument("--out", required=True, help="folder of the small outputs")
+    ap.add_argument("--flow-voxel-per-d", type=float, default=6.0)
+    ap.add_argument("--directions", default="xx,zz")
+    args = ap.parse_args(argv)
+    os.makedirs(args.out, exist_ok=True)
+    rows = []
+    for folder in args.run_dirs:
+        try:
+            rows.append(solve_folder(folder, args.out, args.flow_voxel_per_d,
+                                     tuple(args.directions.split(","))))
+        except (ValueError, OSError) as e:
+            print("pore_flow_lines: %s skipped: %s" % (folder, e), file=sys.stderr)
+    if not rows:
+        sys.exit("pore_flow_lines: no deposit solved")
+    t = table(rows)
+    with open(os.path.join(args.out, "flow_lines.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(t[0]))
+        w.writeheader()
+        w.writerows(t)
+    plot(t, os.path.join(args.out, "flow_lines.png"))
+    for r in t:
+        print("eta %-4g zeta %-4g seed %-3g  k_xx %.4g  k_zz %.4g  k_xx/k_zz %.3f  k_zz/k_KC %.3f"
+              % (r["eta"], r["zeta"], r["seed"], r["k_xx"], r["k_zz"], r["anisotropy"],
+                 r["k_zz_over_kozeny_carman"]))
+
+
+if __name__ == "__main__":
+    main()
