@@ -457,7 +457,7 @@ def analyse_voxels(particles, box, zlo, zhi, voxel, progress, check=True):
 # the analysis
 
 
-def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
+def analyse(particles, box, zlo, zhi, voxel=None, progress=None, voxel_fraction=VOXEL_FRACTION):
     """every pore-space quantity of the slab [zlo, zhi]; voxel quantities at voxel and 2 voxel.
     Keys starting with '_' hold arrays for the picture and the image file."""
     progress = progress or Progress(quiet=True)
@@ -465,7 +465,7 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
         raise ValueError("the slab needs zhi > zlo")
     smallest = float(particles.semi.min())
     if voxel is None:
-        voxel = VOXEL_FRACTION * smallest
+        voxel = voxel_fraction * smallest
     if not voxel > 0:
         raise ValueError("the voxel size must be > 0")
     if voxel > MAX_VOXEL_FRACTION * smallest:
@@ -500,7 +500,7 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None):
                           "K": KOZENY_CONSTANT},
         "hydraulic_radius": porosity / s_v if s_v > 0 else math.inf,
         "voxel_size": fine["voxel_size"],
-        "voxel_default_fraction_of_smallest_semi_axis": VOXEL_FRACTION,
+        "voxel_default_fraction_of_smallest_semi_axis": voxel_fraction,
         "convergence": {"voxel_size": [fine["voxel_size"], coarse["voxel_size"]]},
     }
     for key in ("voxel_spacing", "grid", "porosity_voxel", "largest_inscribed_radius",
@@ -625,7 +625,8 @@ def public(result):
     return {k: v for k, v in result.items() if not k.startswith("_")}
 
 
-def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_voxel=None):
+def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_voxel=None,
+               voxel_fraction=VOXEL_FRACTION):
     """analyse RUN_DIR/deposit.dump in the slab of RUN_DIR/packing.dat; write pores.json,
     the voxel image and pores.png (with flow: the permeability tensor's diagonal from the
     flow solve too); return the public result"""
@@ -639,7 +640,7 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
     # the flow first: its bad input (no pore path, a voxel too large) ends the run early
     k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"], flow_voxel, progress)
          if flow else None)
-    result = analyse(particles, box, pk["zlo"], pk["zhi"], voxel, progress)
+    result = analyse(particles, box, pk["zlo"], pk["zhi"], voxel, progress, voxel_fraction)
     if "phi" in pk:
         result["porosity_check"] = {"one_minus_phi_packing_dat": 1.0 - pk["phi"],
                                     "difference": result["porosity"] - (1.0 - pk["phi"])}
@@ -727,6 +728,9 @@ def main(argv=None):
     ap.add_argument("run_dirs", nargs="+", metavar="RUN_DIR")
     ap.add_argument("--voxel", type=float, default=None,
                     help="voxel size (default %g x the smallest semi-axis)" % VOXEL_FRACTION)
+    ap.add_argument("--voxel-fraction", type=float, default=VOXEL_FRACTION,
+                    help="without --voxel: the voxel as this fraction of the smallest semi-axis "
+                         "(default %g)" % VOXEL_FRACTION)
     ap.add_argument("--compare", metavar="OUT.png", default=None,
                     help="plot several runs against the shape instead (and write the table "
                          "of means and standard errors to OUT.csv)")
@@ -759,7 +763,11 @@ def report(ap, args):
     d = args.run_dirs[0]
     if not os.path.isdir(d):
         raise ValueError("%s: no such folder" % d)
-    r = run_folder(d, args.voxel, args.quiet, flow=args.flow, flow_voxel=args.flow_voxel)
+    if not 0 < args.voxel_fraction <= MAX_VOXEL_FRACTION:
+        raise ValueError("--voxel-fraction %g: needs 0 < fraction <= %g"
+                         % (args.voxel_fraction, MAX_VOXEL_FRACTION))
+    r = run_folder(d, args.voxel, args.quiet, flow=args.flow, flow_voxel=args.flow_voxel,
+                   voxel_fraction=args.voxel_fraction)
     c = r["convergence"]
     print("pores: %s (%d particles, slab z in [%.4g, %.4g])"
           % (d, r["particles"], r["slab"]["zlo"], r["slab"]["zhi"]))

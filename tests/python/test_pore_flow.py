@@ -182,6 +182,8 @@ def test_bad_input(tmp_path, capsys):
     cubic_lattice_folder(lattice)
     code, err = run_tool([lattice, "--quiet", "--voxel", "0.3"], capsys)
     assert code == 2 and "voxel 0.3 too large" in err
+    code, err = run_tool([lattice, "--quiet", "--voxel-fraction", "0.9"], capsys)
+    assert code == 2 and "--voxel-fraction 0.9: needs 0 < fraction <= 0.5" in err
     code, err = run_tool([lattice, "--quiet", "--flow", "--flow-voxel", "0.6"], capsys)
     assert code == 2 and "flow voxel 0.6" in err
     # a closed layer: overlapping spheres of radius 0.75 on the lattice at z = 4
