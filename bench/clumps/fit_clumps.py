@@ -22,7 +22,8 @@ Writes per k: clump_k<k>.mol (LAMMPS molecule file: Coords, Types, Diameters, Ma
 union's mass, centre of mass and inertia tensor in the header, density 1 over the union's
 volume), clump_k<k>.coeff (pair_coeff lines, one per pair of types, mapping the Hertz law to
 pair granular per sphere radius; include it after the variables kn K kt mu mstar are set),
-clump_k<k>.walls (one fix wall/gran per type group: include it after the pour) and
+clump_k<k>.walls (a group per sphere type and one fix wall/gran each), clump_k<k>.groups
+(the group commands again: fix pour's later batches join the groups when it is re-run) and
 clump_k<k>.json (the fit and its errors).
 """
 import argparse
@@ -128,7 +129,7 @@ def union_properties(centres, radii, axes, seed=7):
     half = np.max(np.abs(centres) + radii[:, None], axis=0)
     box_volume = np.prod(2 * half)
     hits, sums, inertia_sums = 0, np.zeros(3), np.zeros(6)
-    n_total, inter_e, union_e = 0, 0, 0
+    n_total, inter_e = 0, 0
     for _ in range(CHECK_POINTS // 2 ** 17):
         pts = rng.uniform(-half, half, (2 ** 17, 3))
         inside = in_union(pts, centres, radii)
@@ -203,7 +204,7 @@ def describe(layout, params, eta, zeta):
 def write_files(base, clump):
     """base.mol, base.coeff, base.walls and base.json of a clump."""
     write_molecule(base + ".mol", clump)
-    write_coefficients(base + ".coeff", base + ".walls", clump)
+    write_coefficients(base + ".coeff", base + ".walls", base + ".groups", clump)
     with open(base + ".json", "w") as f:
         json.dump(clump, f, indent=1)
 
@@ -239,12 +240,13 @@ def orbit_radii(clump):
     return [float(radii[orbit == o][0]) for o in range(orbit.max() + 1)]
 
 
-def write_coefficients(coeff_path, walls_path, clump):
+def write_coefficients(coeff_path, walls_path, groups_path, clump):
     """Our Hertz law F = kn xi^3/2 + K xi^1/2 dxi/dt holds for every pair of spheres, whatever
     their radii: pair granular's hertz is kn_g sqrt(R*) xi^3/2 and its viscoelastic damping
     eta_n0 m* sqrt(R*) xi^1/2 dxi/dt, so per pair of types kn_g = kn / sqrt(R*) and
     eta_n0 = K / (m* sqrt(R*)) (m* of two bodies: the pair uses the rigid bodies' masses).
-    The wall has R* = r and m* = the body mass."""
+    The wall has R* = r and m* = the body mass; fix wall/gran has one law per fix, so there
+    is one per sphere type, on a group of that type (groups_path adds new atoms to them)."""
     r = orbit_radii(clump)
     with open(coeff_path, "w") as f:
         f.write("# pair granular per type pair for clump_k%d (fit_clumps.py); needs kn K kt mu "
@@ -260,9 +262,14 @@ def write_coefficients(coeff_path, walls_path, clump):
                 % clump["k"])
         for i, ri in enumerate(r):
             f.write("group floortype%d type %d\n" % (i + 1, i + 1))
+        for i, ri in enumerate(r):
             f.write("fix ground%d floortype%d wall/gran granular hertz $(v_kn/sqrt(%.10g)) "
                     "$(v_K/(v_mbody*sqrt(%.10g))) damping viscoelastic tangential linear_history "
                     "${kt} 0.0 ${mu} zplane 0.0 NULL\n" % (i + 1, i + 1, ri, ri))
+    with open(groups_path, "w") as f:
+        f.write("# the floor groups of clump_k%d: re-run to add newly poured atoms\n" % clump["k"])
+        for i in range(len(r)):
+            f.write("group floortype%d type %d\n" % (i + 1, i + 1))
 
 
 def main(argv=None):

@@ -17,7 +17,6 @@ per-run rows (rows.csv) and the histograms (histograms.png) are written to --res
 import argparse
 import csv
 import json
-import math
 import os
 import re
 import shutil
@@ -57,7 +56,9 @@ def fitted(k, fit_dir):
     if not os.path.exists(path):
         fit_clumps.main(["--k", str(k), "--eta", str(ETA), "--zeta", str(ZETA), "--out", fit_dir])
     with open(path) as f:
-        return json.load(f)
+        clump = json.load(f)
+    fit_clumps.write_files(path[:-len(".json")], clump)    # the input files from the fit
+    return clump
 
 
 def deposit_timestep(n, work):
@@ -83,7 +84,8 @@ def run_clump(k, seed, n, np_ranks, out, fit_dir, dt):
     cmd = mpi(np_ranks) + [lmp(), "-in", os.path.join(HERE, "in.clump_deposit"), "-log",
                            os.path.join(out, "log.lammps"), "-nocite", "-screen", "none"]
     for name, value in (("N", n), ("mol", base + ".mol"), ("coeff", base + ".coeff"),
-                        ("walls", base + ".walls"), ("ntypes", max(clump["orbit"]) + 1),
+                        ("walls", base + ".walls"), ("groups", base + ".groups"),
+                        ("ntypes", max(clump["orbit"]) + 1),
                         ("molradius", "%.10g" % molradius), ("mbody", "%.10g" % clump["mass"]),
                         ("dt", "%.10g" % dt), ("seed", seed), ("out", out),
                         ("eta", ETA), ("zeta", ZETA)):

@@ -1,17 +1,16 @@
 """The clump benchmark's pieces (bench/clumps): the fitter's Monte Carlo volume and area against
 the exact union of collinear spheres, the exact ellipsoid area, and the per-radius mapping of
 our Hertz law to LAMMPS's pair granular and fix wall/gran (the coefficient files the fitter
-writes), checked by the forces LAMMPS computes. A tiny clump pour runs when LAMMPS has RIGID.
+writes), checked by the forces LAMMPS computes; a tiny clump pour.
 """
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from conftest import new_lammps, root_dir, subprocess_env
+from conftest import new_lammps, root_dir
 
 sys.path.insert(0, os.path.join(root_dir(), "bench", "clumps"))
 import clump_analysis    # noqa: E402
@@ -103,7 +102,8 @@ def two_spheres(lmp, r1, r2, gap, vz, include, mass):
 def coefficient_files(tmp_path_factory):
     out = tmp_path_factory.mktemp("coeff")
     clump = {"k": 3, "radii": [0.43, 0.34, 0.34], "orbit": [0, 1, 1]}
-    fit_clumps.write_coefficients(str(out / "c.coeff"), str(out / "c.walls"), clump)
+    fit_clumps.write_coefficients(str(out / "c.coeff"), str(out / "c.walls"),
+                                  str(out / "c.groups"), clump)
     return out
 
 
@@ -148,18 +148,14 @@ def test_wall_mapping_gives_our_hertz_law(coefficient_files, radius_type, xi, vz
     lmp.close()
 
 
-def has_rigid():
-    lmp = new_lammps()
-    found = lmp.has_style("fix", "rigid/small")
-    lmp.close()
-    return found
-
-
-@pytest.mark.skipif(not has_rigid(), reason="LAMMPS built without RIGID")
 def test_tiny_clump_pour_comes_to_rest_and_is_measured(tmp_path):
     """Six 3-sphere clumps through in.clump_deposit (fix pour + rigid/small + pair granular,
     a floor per sphere radius) come to rest by its criterion, on the floor, and are measured."""
     import run_clumps
+    lmp = new_lammps()
+    assert lmp.has_style("fix", "rigid/small"), \
+        "LAMMPS was built without RIGID: ./ellipsoid-dep setup builds it with PKG_RIGID"
+    lmp.close()
     fit_dir = tmp_path / "fit"
     fit_dir.mkdir()
     clump = fit_clumps.describe("OX", [0.43, 0.41, 0.34], 1.4, 1.8)
