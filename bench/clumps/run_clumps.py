@@ -19,6 +19,7 @@ import csv
 import json
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -35,8 +36,8 @@ import clump_table    # noqa: E402
 import fit_clumps    # noqa: E402
 
 ETA, ZETA = 1.4, 1.8
-FIELDS = ["run", "seed", "N", "np", "wall_seconds", "steps", "at_rest", "phi", "Z", "Nslab",
-          "load_start", "load_end"] + \
+FIELDS = ["run", "seed", "N", "np", "wall_seconds", "cpu_seconds", "steps", "at_rest", "phi",
+          "Z", "Nslab", "load_start", "load_end"] + \
     ["P%d" % k for k in range(clump_analysis.BINS)]
 
 
@@ -125,6 +126,13 @@ def run_ellipsoids(seed, n, np_ranks, out):
     return row
 
 
+def children_cpu():
+    """User + system CPU seconds of the finished child processes (and theirs): the cost of a
+    run without the share of the cores that other jobs took (wall time on a loaded machine)."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def read_rows(path):
     if not os.path.exists(path):
         return []
@@ -171,14 +179,16 @@ def main(argv=None):
                     continue
                 out = os.path.join(args.out, "%s-N%d-s%d" % (name, args.N, seed))
                 print("run_clumps: %s seed %d N %d ..." % (name, seed, args.N), flush=True)
+                if r != "e" and dt is None:
+                    dt = deposit_timestep(args.N, os.path.join(args.out, "dt-probe"))
                 load_start = os.getloadavg()[0]
+                cpu0 = children_cpu()
                 if r == "e":
                     row = run_ellipsoids(seed, args.N, args.np, out)
                 else:
-                    if dt is None:
-                        dt = deposit_timestep(args.N, os.path.join(args.out, "dt-probe"))
                     row = run_clump(int(r), seed, args.N, args.np, out, fit_dir, dt)
-                row.update(load_start=load_start, load_end=os.getloadavg()[0])
+                row.update(load_start=load_start, load_end=os.getloadavg()[0],
+                           cpu_seconds=round(children_cpu() - cpu0, 2))
                 append_row(rows_path, row)
                 print("  %.0f s, %d steps, phi %.4f, Z %.3f, at_rest %d"
                       % (row["wall_seconds"], row["steps"], row["phi"], row["Z"],
