@@ -12,7 +12,8 @@ already in DIR/rows.csv is skipped, so an interrupted invocation continues where
 Per run: the wall time of the whole LAMMPS process (from the empty box to rest), the steps,
 phi, Z and the contact-normal histogram (clumps: clump_analysis.py; ellipsoids: in.deposit's
 packing.dat and contact_histo.dat). Then the table (table.md), the summary (summary.csv), the
-per-run rows (rows.csv) and the histograms (histograms.png) are written to --results.
+per-run rows (rows.csv), the histograms (histograms.png) and the fitted clumps (.json, .mol)
+are written to --results.
 """
 import argparse
 import csv
@@ -201,6 +202,8 @@ def main(argv=None):
         if os.path.exists(path):
             with open(path) as f:
                 clumps["k%d" % k] = json.load(f)
+            for ext in (".json", ".mol"):    # the fits, small and reusable
+                shutil.copy(path[:-len(".json")] + ext, args.results)
     clump_table.write(read_rows(rows_path), clumps, args.results)
 
 
