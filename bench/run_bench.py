@@ -4,6 +4,8 @@
   ./ellipsoid-dep bench            quick (N ~ 1000, M = 500, 3 repeats; a few minutes)
   ./ellipsoid-dep bench --full     N ~ 4000 side by side, scaling 1e3..1e5
   ./ellipsoid-dep bench kernel     the kernel micro-benchmarks (build/bench/bench_kernel)
+  ./ellipsoid-dep bench clumps     multi-sphere clumps against the ellipsoids, whole deposits
+                                   (bench/clumps/run_clumps.py; hours on 2 shared cores)
 
 Needs the environment set by ./ellipsoid-dep (LAMMPS_BUILD, LAMMPS_PLUGIN_PATH).  Every number
 comes from this one invocation; timings are medians over interleaved repeats.  Output (logs,
@@ -601,6 +603,9 @@ def run_kernel():
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "kernel":
         run_kernel()
+    if len(sys.argv) > 1 and sys.argv[1] == "clumps":
+        script = os.path.join(ROOT, "bench", "clumps", "run_clumps.py")
+        os.execv(sys.executable, [sys.executable, script] + sys.argv[2:])
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--full", action="store_true", help="bigger N, M, repeats; N up to 1e5")
