@@ -21,6 +21,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pore_surface  # noqa: E402
 import pores  # noqa: E402
 
 
@@ -38,8 +39,9 @@ def solve_folder(folder, out, voxel_per_d, directions):
     k = pores.flow_permeability(particles, box, zlo, zhi, d / voxel_per_d, progress,
                                 directions=directions)
     v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
-    porosity = 1.0 - (pores.slab_fraction(particles, zlo, zhi) * particles.volumes).sum() / v_slab
-    s_v = pores.slab_surface(particles, zlo, zhi)[0] / v_slab
+    solid = (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum()
+    porosity = 1.0 - solid / v_slab
+    s_v = pore_surface.slab_surface(particles, zlo, zhi)[0] / v_slab
     row = {"folder": folder, "eta": pk.get("eta"), "zeta": pk.get("zeta"),
            "seed": pk.get("seed"), "porosity": porosity, "specific_surface": s_v,
            "k_kozeny_carman": porosity ** 3 / (pores.KOZENY_CONSTANT * s_v ** 2) / d ** 2,

@@ -22,6 +22,8 @@ import pytest
 from scipy import integrate
 
 import geometry
+import pore_voxels
+import pore_surface
 import pores
 from conftest import new_lammps, root_dir
 
@@ -47,9 +49,9 @@ def test_cubic_lattice_exact_porosity_and_surface(zlo, zhi):
     sphere's zone area is 2 pi R x height (the cut spheres go through the quadrature)"""
     p, box = cubic_lattice()
     v_slab = 4.0 * (zhi - zlo)
-    porosity = 1 - (pores.slab_fraction(p, zlo, zhi) * p.volumes).sum() / v_slab
+    porosity = 1 - (pore_surface.slab_fraction(p, zlo, zhi) * p.volumes).sum() / v_slab
     assert porosity == pytest.approx(1 - math.pi / 6, rel=1e-13)
-    area, change, ncut = pores.slab_surface(p, zlo, zhi)
+    area, change, ncut = pore_surface.slab_surface(p, zlo, zhi)
     assert area / v_slab == pytest.approx(math.pi / D, rel=1e-12)
     assert ncut == (0 if zlo == 2.0 else 8)
     assert change < 1e-12
@@ -101,7 +103,7 @@ def test_cubic_lattice_default_settings():
     assert r["largest_inscribed_radius"] == pytest.approx(R, abs=1e-9)
     assert r["convergence"]["largest_inscribed_radius"][1] == pytest.approx(R, abs=1e-9)
     psd = r["pore_size_distribution"]
-    w = pores.BIN_FRACTION * SPHERE_R
+    w = pore_voxels.BIN_FRACTION * SPHERE_R
     assert psd["bin_width"] == w
     np.testing.assert_allclose(psd["radius"], (np.arange(len(psd["radius"])) + 0.5) * w)
     assert len(psd["radius"]) >= 6 and psd["radius"][-1] - w / 2 <= R < psd["radius"][-1] + w / 2
@@ -116,9 +118,9 @@ def test_spheroid_areas_closed_form():
     a, c = 2.0, 0.7    # oblate: a = b > c
     e = math.sqrt(1 - c * c / (a * a))
     oblate = 2 * math.pi * a * a * (1 + (1 - e * e) / e * math.atanh(e))
-    got = pores.ellipsoid_area(np.array([[1.0, 2.5, 1.0], [0.7, 2.0, 2.0]]))
+    got = pore_surface.ellipsoid_area(np.array([[1.0, 2.5, 1.0], [0.7, 2.0, 2.0]]))
     np.testing.assert_allclose(got, [prolate, oblate], rtol=1e-13)
-    assert pores.ellipsoid_area(np.array([0.3, 0.3, 0.3])) == pytest.approx(4 * math.pi * 0.09,
+    assert pore_surface.ellipsoid_area(np.array([0.3, 0.3, 0.3])) == pytest.approx(4 * math.pi * 0.09,
                                                                            rel=1e-14)
 
 
@@ -131,12 +133,12 @@ def test_triaxial_area_quadrature():
                               + (a * b * ct) ** 2)
 
     ref, _ = integrate.dblquad(element, 0, math.pi, 0, 2 * math.pi, epsabs=1e-13, epsrel=1e-13)
-    assert pores.ellipsoid_area(np.array([a, b, c])) == pytest.approx(ref, rel=1e-11)
+    assert pore_surface.ellipsoid_area(np.array([a, b, c])) == pytest.approx(ref, rel=1e-11)
     # the zone quadrature over the whole surface, for tilted copies
     rng = np.random.default_rng(3)
     R = pores.rotation_matrices(geometry.random_quats(rng, 5))
     semi = np.tile([a, b, c], (5, 1))
-    whole, change = pores.converged_zone_area(semi, R, -np.ones(5), np.ones(5))
+    whole, change = pore_surface.converged_zone_area(semi, R, -np.ones(5), np.ones(5))
     assert change <= 1e-12
     np.testing.assert_allclose(whole, ref, rtol=1e-11)
 
@@ -150,7 +152,7 @@ def test_cut_spheroid_against_surface_of_revolution():
             return 2 * math.pi * a * math.sqrt(u + (a * z / (c * c)) ** 2)
         for z1, z2 in ((-0.3 * c, 0.9 * c), (0.2 * c, c), (-c, -0.5 * c)):
             ref, _ = integrate.quad(ring, z1, z2, epsabs=1e-14, epsrel=1e-13)
-            got = pores.converged_zone_area(np.array([[a, a, c]]), np.eye(3)[None],
+            got = pore_surface.converged_zone_area(np.array([[a, a, c]]), np.eye(3)[None],
                                             np.array([z1 / c]), np.array([z2 / c]))[0][0]
             assert got == pytest.approx(ref, rel=1e-11)
 
@@ -162,9 +164,9 @@ def test_tilted_cut_adds_up():
     semi = np.array([[0.9, 0.5, 0.25]])
     R = pores.rotation_matrices(geometry.random_quats(rng, 1))
     cuts = np.array([-1.0, -0.62, -0.1, 0.33, 0.8, 1.0])
-    zones = [pores.converged_zone_area(semi, R, cuts[k:k + 1], cuts[k + 1:k + 2])[0][0]
+    zones = [pore_surface.converged_zone_area(semi, R, cuts[k:k + 1], cuts[k + 1:k + 2])[0][0]
              for k in range(5)]
-    assert sum(zones) == pytest.approx(pores.ellipsoid_area(semi[0]), rel=1e-12)
+    assert sum(zones) == pytest.approx(pore_surface.ellipsoid_area(semi[0]), rel=1e-12)
     assert min(zones) > 0
 
 
@@ -204,7 +206,7 @@ def test_local_thickness_brute_force():
     radius_max = 4.5
     want = brute_local_thickness(pore, h, int(radius_max / h))
     for window in (slice(0, shape[2]), slice(4, 9)):    # balls from outside the window too
-        got, _ = pores.local_thickness(pore, (h, h, h), h * np.arange(1, 5), window,
+        got, _ = pore_voxels.local_thickness(pore, (h, h, h), h * np.arange(1, 5), window,
                                        lambda m: None)
         np.testing.assert_allclose(got, want[:, :, window], atol=1e-12)
         assert got.max() > 2 * h    # several levels really occur
@@ -220,13 +222,13 @@ def test_periodic_connectivity():
         else:
             pore[0, 2, 2] = pore[0, 1, 2] = pore[0, 0, 2] = True
             pore[0, 5, 2:5] = True        # ... along y, across y = 0 | y = 5, up
-        labels, _ = pores.periodic_labels(pore)
+        labels, _ = pore_voxels.periodic_labels(pore)
         assert labels[0, 2, 0] == labels[pore][-1] > 0
         top = labels[:, :, -1][labels[:, :, -1] > 0]
         assert labels[0, 2, 0] in top
         closed = pore.copy()
         closed[:, :, 3] = False           # a solid layer closes it
-        labels, _ = pores.periodic_labels(closed)
+        labels, _ = pore_voxels.periodic_labels(closed)
         assert not np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
                                   labels[:, :, -1][labels[:, :, -1] > 0]).size
 
@@ -236,16 +238,16 @@ def test_geometric_tortuosity(monkeypatch):
     the periodic x face: sqrt(1 + (hx/hz)^2); a closed slab: None; above the voxel limit:
     None"""
     spacing = (0.3, 0.2, 0.4)
-    assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) == pytest.approx(1.0)
+    assert pore_voxels.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) == pytest.approx(1.0)
     pore = np.zeros((7, 5, 12), bool)
     k = np.arange(12)
     pore[(k + 3) % 7, 2, k] = True
-    tau = pores.geometric_tortuosity(pore, spacing)
+    tau = pore_voxels.geometric_tortuosity(pore, spacing)
     assert tau == pytest.approx(math.hypot(0.3, 0.4) / 0.4, rel=1e-12)
     pore[:, :, 6] = False
-    assert pores.geometric_tortuosity(pore, spacing) is None
-    monkeypatch.setattr(pores, "TORTUOSITY_MAX_VOXELS", 179)    # the open slab has 180
-    assert pores.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) is None
+    assert pore_voxels.geometric_tortuosity(pore, spacing) is None
+    monkeypatch.setattr(pore_voxels, "TORTUOSITY_MAX_VOXELS", 179)    # the open slab has 180
+    assert pore_voxels.geometric_tortuosity(np.ones((5, 4, 9), bool), spacing) is None
 
 
 def test_voxel_porosity_converges():
@@ -259,11 +261,11 @@ def test_voxel_porosity_converges():
                         np.tile([0.45, 0.3, 0.2], (n, 1)))
     box = np.array([[0, 3], [0, 3], [0, 4]], float)
     zlo, zhi = 0.83, 3.27
-    exact = 1 - (pores.slab_fraction(p, zlo, zhi) * p.volumes).sum() / (9 * (zhi - zlo))
+    exact = 1 - (pore_surface.slab_fraction(p, zlo, zhi) * p.volumes).sum() / (9 * (zhi - zlo))
     errors = []
     for h in (0.1, 0.05, 0.025):
-        grid = pores.Grid(box, zlo, zhi, h, margin=0.0)
-        solid = pores.voxelize(p, grid, lambda m: None)[:, :, grid.slab]
+        grid = pore_voxels.Grid(box, zlo, zhi, h, margin=0.0)
+        solid = pore_voxels.voxelize(p, grid, lambda m: None)[:, :, grid.slab]
         errors.append(abs((1 - solid.mean()) - exact))
     assert errors[2] < errors[0] / 4
     assert errors[2] < 1e-3
@@ -298,7 +300,7 @@ def test_deposit_porosity_matches_packing_compute(deposit):
     zlo, zhi = pk["zlo"], pk["zhi"]
     assert zhi > zlo + 2.0
     v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
-    porosity = 1 - (pores.slab_fraction(particles, zlo, zhi) * particles.volumes).sum() / v_slab
+    porosity = 1 - (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum() / v_slab
     # the dump holds 10 significant digits and packing.dat's zlo, zhi 6 decimals
     assert porosity == pytest.approx(1 - phi, abs=2e-5)
     assert porosity == pytest.approx(1 - pk["phi"], abs=2e-5)
