@@ -42,6 +42,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_packing  # noqa: E402
 from pore_surface import slab_fraction, slab_surface  # noqa: E402
 from pore_voxels import Grid, analyse_voxels, periodic_labels, voxelize  # noqa: E402
+from study_stats import Pooled  # noqa: E402
 
 VOXEL_FRACTION = 0.125    # default voxel size: this fraction of the smallest semi-axis
 MAX_VOXEL_FRACTION = 0.5  # larger voxels cannot resolve the thinnest particle dimension
@@ -349,7 +350,8 @@ COMPARED = (("porosity", "porosity"),
 
 def compare(run_dirs, out_png, voxel=None, quiet=False):
     """porosity, specific surface and Kozeny-Carman permeability against the shape along the
-    study's lines; seeds of one shape are averaged (error bar: standard error)"""
+    study's lines; seeds of one shape are averaged; error bars and the table's *_sem: the
+    seed SD pooled per group of shapes (tools/study_stats.py) / sqrt(the shape's seeds)"""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -365,25 +367,25 @@ def compare(run_dirs, out_png, voxel=None, quiet=False):
         by_shape.setdefault((pk["eta"], pk["zeta"]), []).append(res)
     fig, axes = plt.subplots(1, len(COMPARED), figsize=(4.2 * len(COMPARED), 3.6))
     table = []
+    pooled = {k: Pooled({s: [r[k] for r in rs] for s, rs in by_shape.items()})
+              for k, _ in COMPARED}
     for ax, (key, label) in zip(axes, COMPARED):
         for name, on_line, which, style in SHAPE_LINES:
-            pts = sorted((s[which], [r[key] for r in rs]) for s, rs in by_shape.items()
-                         if on_line(*s))
-            if not pts:
+            shapes = sorted((s for s in by_shape if on_line(*s)), key=lambda s: s[which])
+            if not shapes:
                 continue
-            x = [p[0] for p in pts]
-            m = [float(np.mean(v)) for _, v in pts]
-            e = [float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else 0.0
-                 for _, v in pts]
-            ax.errorbar(x, m, yerr=e, fmt=style, capsize=3, label=name)
+            e = [pooled[key].se(s) for s in shapes]
+            ax.errorbar([s[which] for s in shapes], [pooled[key].mean(s) for s in shapes],
+                        yerr=[np.nan if v is None else v for v in e], fmt=style, capsize=3,
+                        label=name)
         ax.set(xlabel=r"aspect ratio ($\eta$ or $\zeta$)", ylabel=label)
         ax.legend(fontsize=7)
     for (eta, zeta), rs in sorted(by_shape.items()):
         row = {"eta": eta, "zeta": zeta, "runs": len(rs)}
         for k, _ in COMPARED:
-            v = [r[k] for r in rs]
-            row[k] = float(np.mean(v))
-            row[k + "_sem"] = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else ""
+            se = pooled[k].se((eta, zeta))
+            row[k] = pooled[k].mean((eta, zeta))
+            row[k + "_sem"] = "" if se is None else se
         table.append(row)
     fig.tight_layout()
     fig.savefig(out_png, dpi=120)

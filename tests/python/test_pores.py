@@ -335,3 +335,24 @@ def test_tool_on_the_run_folder(deposit):
         (row,) = list(csv.DictReader(f))
     assert int(row["runs"]) == 2 and float(row["porosity"]) == pytest.approx(saved["porosity"])
     assert float(row["porosity_sem"]) == 0.0    # the same run twice
+
+
+def test_compare_errors_pool_the_seed_scatter(tmp_path):
+    """--compare's error of a shape is the seed SD pooled over its group / sqrt(its seeds):
+    two spheroids with two seeds each at +-0.01 (SD 0.01 sqrt 2) and one with a single seed,
+    which gets the pooled SD instead of no error"""
+    values = {(1.0, 1.0): [0.40, 0.42], (1.2, 1.0): [0.38, 0.40], (1.4, 1.0): [0.37]}
+    folders = []
+    for (eta, zeta), porosities in values.items():
+        for seed, p in enumerate(porosities):
+            d = tmp_path / ("eta%g_s%d" % (eta, seed))
+            d.mkdir()
+            (d / "packing.dat").write_text("eta %g\nzeta %g\n" % (eta, zeta))
+            (d / "pores.json").write_text(json.dumps({
+                "porosity": p, "specific_surface": 3.0, "kozeny_carman_permeability": 1e-3}))
+            folders.append(str(d))
+    table = {(r["eta"], r["zeta"]): r for r in pores.compare(folders, str(tmp_path / "c.png"))}
+    sd = 0.01 * math.sqrt(2)
+    assert table[(1.0, 1.0)]["porosity"] == pytest.approx(0.41)
+    assert table[(1.0, 1.0)]["porosity_sem"] == pytest.approx(sd / math.sqrt(2))
+    assert table[(1.4, 1.0)]["porosity_sem"] == pytest.approx(sd)
