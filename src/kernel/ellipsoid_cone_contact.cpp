@@ -117,10 +117,7 @@ ContactGeometry ellipsoid_cone_contact(const Ellipsoid &e, const Vec3 &center, c
   g.point = 0.5 * (g.point_a + g.point_b);
   const double local_radius = radius + slope * u.dot(g.point_b - center);
   g.effective_radius = wall_effective_radius(gaussian_radius(e, normal), -2.0 * local_radius);
-  if (!best.converged)
-    g.status = Status::NotConverged;
-  else
-    g.status = g.overlap > 0.0 ? Status::Overlapping : Status::Separated;
+  g.status = surface_status(best.converged, g.overlap);
   return g;
 }
 

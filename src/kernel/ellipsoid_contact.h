@@ -47,6 +47,14 @@ enum class Status {
   Degenerate = 4       // input cannot be handled (non-finite, zero axis); nothing computed
 };
 
+// The status of a wall contact found by an iteration: its overlap decides, unless the
+// iteration stopped at its cap.
+inline Status surface_status(bool converged, double overlap)
+{
+  if (!converged) return Status::NotConverged;
+  return overlap > 0.0 ? Status::Overlapping : Status::Separated;
+}
+
 // Geometry the force laws need. normal points from A to B.
 struct ContactGeometry {
   Status status = Status::Separated;

@@ -48,10 +48,7 @@ ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid &e, const Vec3 &axis_
   g.point = 0.5 * (g.point_a + g.point_b);
   g.effective_radius =
       wall_effective_radius(gaussian_radius(e, m), inside ? -2.0 * radius : 2.0 * radius);
-  if (!extremum.converged)
-    g.status = Status::NotConverged;
-  else
-    g.status = g.overlap > 0.0 ? Status::Overlapping : Status::Separated;
+  g.status = surface_status(extremum.converged, g.overlap);
   return g;
 }
 

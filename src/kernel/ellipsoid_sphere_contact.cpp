@@ -35,10 +35,7 @@ ContactGeometry ellipsoid_sphere_contact(const Ellipsoid &e, const Vec3 &center,
   g.point = 0.5 * (g.point_a + g.point_b);
   g.effective_radius =
       wall_effective_radius(gaussian_radius(e, g.normal), inside ? -radius : radius);
-  if (!extremum.converged)
-    g.status = Status::NotConverged;
-  else
-    g.status = g.overlap > 0.0 ? Status::Overlapping : Status::Separated;
+  g.status = surface_status(extremum.converged, g.overlap);
   return g;
 }
 
