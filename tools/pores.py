@@ -374,10 +374,10 @@ def compare(run_dirs, out_png, voxel=None, quiet=False):
             shapes = sorted((s for s in by_shape if on_line(*s)), key=lambda s: s[which])
             if not shapes:
                 continue
-            e = [pooled[key].se(s) for s in shapes]
+            e = [pooled[key].se(s) for s in shapes]    # None: no group with two seeds
             ax.errorbar([s[which] for s in shapes], [pooled[key].mean(s) for s in shapes],
-                        yerr=[np.nan if v is None else v for v in e], fmt=style, capsize=3,
-                        label=name)
+                        yerr=None if all(v is None for v in e) else
+                        [0.0 if v is None else v for v in e], fmt=style, capsize=3, label=name)
         ax.set(xlabel=r"aspect ratio ($\eta$ or $\zeta$)", ylabel=label)
         ax.legend(fontsize=7)
     for (eta, zeta), rs in sorted(by_shape.items()):
