@@ -28,7 +28,6 @@ import math
 import os
 import re
 import shlex
-import shutil
 import struct
 import subprocess
 import sys

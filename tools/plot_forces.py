@@ -1,7 +1,8 @@
 """fig_forces.png of the study (tools/plot_figures.py): the contact forces along eta = zeta.
 
 (a) a_n, a_f, a_n + a_f and K0 against a/c with their pooled standard errors (claims.json
-`forces`, tools/study_forces.py); (b) the mean normal force in each direction over the mean
+`forces`, tools/study_forces.py), and a_n + a_f along the spheroid lines where they have the
+force measures; (b) the mean normal force in each direction over the mean
 force, fbar(theta) / <f> (compute contact/histo weight force, column 4 over the mean force);
 (c) P(f / <f>) of the normal forces (compute force/histo), on a log scale. (b) and (c) per
 shape over the deposits that have the force histograms, with the seed SD pooled over the
@@ -62,7 +63,8 @@ def mean_and_error(per_shape, kind):
 
 def figure(claims, deposits, path, tag):
     """the figure, or None (with a note) without the force measures"""
-    forces = (claims or {}).get("forces")
+    lines = (claims or {}).get("forces") or {}
+    forces = lines.get("diagonal")
     per_shape = curves(deposits)
     if forces is None or not per_shape:
         print("  %s: skipped (no deposit with the force measures)" % os.path.basename(path))
@@ -73,11 +75,18 @@ def figure(claims, deposits, path, tag):
         axes[0].errorbar(ac, [r[q]["mean"] for r in forces["per_shape"]],
                          yerr=[r[q]["se"] or 0 for r in forces["per_shape"]], fmt=style, ms=4,
                          capsize=3, label=NAMES[q])
+    for line, style in (("prolate", "v:"), ("oblate", "<:")):
+        if line in lines:
+            rows = lines[line]["per_shape"]
+            axes[0].errorbar([r["a/c"] for r in rows], [r["a_total"]["mean"] for r in rows],
+                             yerr=[r["a_total"]["se"] or 0 for r in rows], fmt=style, ms=4,
+                             capsize=3, label="a_n + a_f, %s line" % line)
     axes[0].set_xscale("log")
     axes[0].xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
     axes[0].xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-    axes[0].set_xlabel("a/c = eta zeta (eta = zeta)")
-    axes[0].set_title("(a) anisotropies and K0, %d deposits" % forces["deposits"], fontsize=9)
+    axes[0].set_xlabel("a/c = eta zeta (eta = zeta unless labelled)")
+    axes[0].set_title("(a) anisotropies and K0, %d deposits"
+                      % sum(f["deposits"] for f in lines.values()), fontsize=9)
     axes[0].axhline(0, color="gray", lw=0.5)
     axes[0].legend(fontsize=8)
     for s, (theta, m, err) in sorted(mean_and_error(per_shape, "direction").items()):

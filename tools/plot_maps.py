@@ -35,8 +35,7 @@ def groups_text(pooled, fmt, sep="; "):
                     for g, v in sorted(pooled.groups.items()) if v["sd"] is not None)
 
 
-def value_panel(ax, fig, pooled, fmt, label):
-    shapes = sorted(pooled.values)
+def value_panel(ax, fig, pooled, shapes, fmt, label):
     pts = np.array(shapes)
     vals = np.array([pooled.mean(s) for s in shapes])
     e, z, grid = interpolate(pts, vals, "cubic")
@@ -66,8 +65,7 @@ def value_panel(ax, fig, pooled, fmt, label):
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
 
 
-def error_panel(ax, fig, pooled, fmt, label):
-    shapes = sorted(pooled.values)
+def error_panel(ax, fig, pooled, shapes, fmt, label):
     pts = np.array(shapes)
     se = np.array([pooled.se(s) for s in shapes], float)
     e, z, grid = interpolate(pts, se, "nearest")    # each point's own: no smoothing
@@ -81,17 +79,26 @@ def error_panel(ax, fig, pooled, fmt, label):
             va="top", fontsize=7)
 
 
+def on_map(shapes):
+    """the shapes inside the square the off-diagonal shapes span: the diagonal's points
+    beyond it (the fall-back's a/c 12 and 16) would stretch the interpolation over a plane
+    with no points (they are on the line figures)"""
+    reach = max((max(s) for s in shapes if s[0] != s[1]), default=math.inf)
+    return [s for s in sorted(shapes) if max(s) <= reach]
+
+
 def map_figure(pooled, path, label, title, fmt):
     """pooled: study_stats.Pooled of one quantity at one selection; path: the PNG"""
-    pts = np.array(sorted(pooled.values), float)
+    shapes = on_map(pooled.values)
+    pts = np.array(shapes, float)
     if len(pts) < 4 or np.linalg.matrix_rank(pts - pts.mean(axis=0)) < 2:
         print("  %s: skipped (needs shapes that span the plane, not a line)" % path)
         return None
     fig, axs = plt.subplots(1, 2, figsize=(12.5, 6.0))
-    value_panel(axs[0], fig, pooled, fmt, label)
+    value_panel(axs[0], fig, pooled, shapes, fmt, label)
     axs[0].set_title(title, fontsize=9)
-    if all(pooled.se(s) is not None for s in pooled.values):
-        error_panel(axs[1], fig, pooled, fmt, label)
+    if all(pooled.se(s) is not None for s in shapes):
+        error_panel(axs[1], fig, pooled, shapes, fmt, label)
     else:
         axs[1].set_axis_off()
     for ax in axs:

@@ -41,7 +41,8 @@ above a/c = 4; `errors` lists every group's SD and degrees of freedom per quanti
   error; null with one seed);
 * `laws`: for each other tangential law and each delta_r it was run at: its diagonal
   maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings;
-* `forces`: the force measures a_n, a_f, a_n + a_f and K0 along the diagonal, their trends
+* `forces`: the force measures a_n, a_f, a_n + a_f and K0 along the diagonal and the spheroid
+  lines (a key per line), their trends
   against a/c and verdicts (tools/study_forces.py), over the deposits that have them;
 * `verdicts`: each claim's comparison with its significance and the seeds per point a
   3-sigma verdict needs (tools/study_verdicts.py, tools/study_histograms.py).
@@ -58,14 +59,11 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_histo, read_packing  # noqa: E402
 from study_claims_md import markdown  # noqa: E402
-from study_stats import Pooled, line_maximum  # noqa: E402
+from study_stats import LINES, Pooled, line_maximum, on_line  # noqa: E402
 from study_forces import forces  # noqa: E402
 from study_verdicts import verdicts  # noqa: E402
 
 ISOTROPIC = 1.0 / (4.0 * math.pi)
-LINES = {"diagonal": (lambda e, z: e == z, "eta"),
-         "prolate": (lambda e, z: z == 1.0 and e > 1.0, "eta"),
-         "oblate": (lambda e, z: e == 1.0 and z > 1.0, "zeta")}
 OTHER = "other"    # the group of shapes on none of the lines
 HISTOGRAMS = {"contact_normals": ("contact_histo", False, "contact"),    # name: (file, rising
               "long_axes": ("orient_histo", True, "orient")}             # crossing, summary)
@@ -100,7 +98,7 @@ def maximum_entry(m, seed_sd):
 
 def line_of(eta, zeta):
     """the line of LINES a shape lies on (spheres: the diagonal), else OTHER"""
-    return next((name for name, (on_line, _) in LINES.items() if on_line(eta, zeta)), OTHER)
+    return next((name for name, (lies_on, _) in LINES.items() if lies_on(eta, zeta)), OTHER)
 
 
 class Selection:
@@ -126,9 +124,9 @@ class Selection:
 
     def line(self, name):
         """[(x, shape)] along a line of LINES, spheres included, sorted by x"""
-        on_line, axis = LINES[name]
+        axis = LINES[name][1]
         return sorted(((e if axis == "eta" else z), (e, z)) for (e, z) in self.phi
-                      if on_line(e, z) or (e == z == 1.0))
+                      if on_line(name, e, z))
 
     def maximum(self, points, rng, pooled=None):
         """the maximum along [(x, shape)] of phi (or of another Pooled quantity)"""

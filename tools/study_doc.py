@@ -22,7 +22,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from study_claims import Selection, load_deposits  # noqa: E402
-from study_doc_claims import pm, table, verdicts_block, z_cell  # noqa: E402
+from study_doc_claims import pm, shape, table, verdicts_block, z_cell  # noqa: E402
 from study_doc_paper import claims_block  # noqa: E402
 from study_forces import MEASURES, NAMES  # noqa: E402
 from study_stats import Pooled  # noqa: E402
@@ -145,21 +145,31 @@ def map_block(data, q, digits):
 
 
 def forces_block(data):
-    """the force measures along the diagonal and their trends (claims.json `forces`)"""
-    f = data.claims.get("forces")
-    if f is None:
-        return "No deposit of the diagonal has the force measures yet."
-    per_shape = [["%g" % r["eta"], "%g" % r["a/c"], "%d" % r["seeds"]]
-                 + [pm(r[q]["mean"], r[q]["se"], 3) for q in MEASURES] for r in f["per_shape"]]
-    trends = []
-    for q in MEASURES:
-        slope, end = f["trends"][q]["slope_per_unit_a/c"], f["trends"][q]["thinnest_minus_roundest"]
-        trends.append([NAMES[q], pm(slope["slope"], slope["se"], 4), z_cell(slope),
-                       slope["verdict"], pm(end["difference"], end["se"], 3), z_cell(end),
-                       end["verdict"]])
-    return (table(["eta = zeta", "a/c", "seeds", "a_n", "a_f", "a_n + a_f", "K0"], per_shape)
-            + "\n\n" + table(["measure", "slope per unit a/c", "significance", "verdict",
-                               "thinnest - roundest", "significance", "verdict"], trends))
+    """the force measures along the lines of shapes and their trends (claims.json `forces`)"""
+    lines = data.claims.get("forces")
+    if lines is None:
+        return "No line of shapes has the force measures yet."
+    per_shape, trends = [], []
+    for line, f in lines.items():
+        per_shape += [[line, "%g" % r["eta"], "%g" % r["zeta"], "%g" % r["a/c"],
+                       "%d" % r["seeds"]] + [pm(r[q]["mean"], r[q]["se"], 3) for q in MEASURES]
+                      for r in f["per_shape"]]
+        for q in MEASURES:
+            slope = f["trends"][q]["slope_per_unit_a/c"]
+            end = f["trends"][q]["thinnest_minus_roundest"]
+            top = f["trends"][q].get("thinnest_minus_largest")
+            trends.append([line, NAMES[q], pm(slope["slope"], slope["se"], 4), z_cell(slope),
+                           slope["verdict"], pm(end["difference"], end["se"], 3), z_cell(end),
+                           end["verdict"], "-" if top is None else "%s than at %s: %s (%s): %s"
+                           % (shape(top["shapes"][0]), shape(top["shapes"][1]),
+                              pm(top["difference"], top["se"], 3), z_cell(top),
+                              top["verdict"])])
+    return (table(["line", "eta", "zeta", "a/c", "seeds", "a_n", "a_f", "a_n + a_f", "K0"],
+                  per_shape)
+            + "\n\n" + table(["line", "measure", "slope per unit a/c", "significance",
+                               "verdict", "thinnest - roundest", "significance", "verdict",
+                               "thinnest - largest (a saturating measure)"],
+                              trends))
 
 
 def porous_block(data):

@@ -74,6 +74,14 @@ def ridge_rows(v):
                         pm(h["difference"], h["se"], 4).replace("0.", "+0.", 1)
                         if h["difference"] >= 0 else pm(h["difference"], h["se"], 4)),
                      z_cell(h), h["verdict"]])
+        e = r.get("equal_aspect")
+        if e:
+            cells = mean_cells(e["mean"], 4, "diagonal shapes")
+            cells[0] += "; per shape: " + ", ".join(
+                "%s %s" % (shape(p["diagonal"]), pm(p["difference"], p["se"], 4))
+                for p in e["per_shape"])
+            rows.append(["diagonal above the %s line at equal a/c (%g-%g; the line "
+                         "interpolated in a/c)" % ((name,) + tuple(e["window_a/c"]))] + cells)
     return rows
 
 

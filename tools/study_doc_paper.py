@@ -75,7 +75,14 @@ def ridge_row(data):
                      % (name, f["difference"], f["stat"], f["sys"], z_text(f["z"]),
                         shape(h["diagonal"]), shape(h["other"]), dtext(h["difference"],
                                                                      h["se"], 4)))
-        verdicts.append("%s: fitted %s; highest points %s" % (name, f["verdict"], h["verdict"]))
+        verdict = "%s: fitted %s; highest points %s" % (name, f["verdict"], h["verdict"])
+        e = x.get("equal_aspect")
+        if e:
+            m = e["mean"]
+            cells[-1] += "; at equal a/c (%d diagonal shapes): %s" % (
+                m["n"], dtext(m["mean"], m["se"], 4, m.get("dof")))
+            verdict += "; at equal a/c %s" % m["verdict"]
+        verdicts.append(verdict)
     return ["the diagonal maximum above the prolate and oblate maxima", "; ".join(cells),
             "; ".join(verdicts)]
 
@@ -183,30 +190,45 @@ def fabric_row(data):
             "spheres: flat or undecided (see the verdict table)"]
 
 
-def forces_row(data):
-    claim = ("abstract: the contact forces are increasingly preferred along the vertical as "
-             "the shape deviates from a sphere")
-    f = data.claims.get("forces")
-    if f is None:
-        return [claim, "not measured: no diagonal shape has two deposits with the force "
-                "measures", "undecided"]
+def force_line_text(line, f):
+    """one line's force-weighted anisotropy a_n + a_f and its own part a_f against a/c"""
     t = f["trends"]
     total, own = t["a_total"]["slope_per_unit_a/c"], t["a_f"]["slope_per_unit_a/c"]
     first, last = f["per_shape"][0], f["per_shape"][-1]
     seeds = sorted({r["seeds"] for r in f["per_shape"]})
-    return [claim,
-            "eta = zeta, %d deposits (%s seeds per shape): force-weighted anisotropy a_n + a_f "
+    return ("%s, %d deposits (%s seeds per shape): force-weighted anisotropy a_n + a_f "
             "%s at %s, %s at %s, slope %s per unit a/c (%s); the forces' own part a_f: "
             "slope %s (%s)"
-            % (f["deposits"], "-".join("%d" % k for k in (seeds[0], seeds[-1]))
-               if len(seeds) > 1 else "%d" % seeds[0],
+            % (LINE_NAMES[line], f["deposits"],
+               "-".join("%d" % k for k in (seeds[0], seeds[-1])) if len(seeds) > 1
+               else "%d" % seeds[0],
                pm(first["a_total"]["mean"], first["a_total"]["se"], 3),
                shape((first["eta"], first["zeta"])),
                pm(last["a_total"]["mean"], last["a_total"]["se"], 3),
                shape((last["eta"], last["zeta"])), pm(total["slope"], total["se"], 4),
-               z_cell(total), pm(own["slope"], own["se"], 4), z_cell(own)),
-            "increasingly vertical: %s; faster than the contact normals' anisotropy (a_f): %s"
-            % (total["verdict"], own["verdict"])]
+               z_cell(total), pm(own["slope"], own["se"], 4), z_cell(own)))
+
+
+LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
+              "oblate": "oblate (eta = 1)"}
+
+
+def forces_row(data):
+    claim = ("abstract: the contact forces are increasingly preferred along the vertical as "
+             "the shape deviates from a sphere")
+    lines = data.claims.get("forces") or {}
+    if "diagonal" not in lines:
+        return [claim, "not measured: fewer than 3 diagonal shapes have two deposits with the "
+                "force measures", "undecided"]
+    verdicts = []
+    for line, f in lines.items():
+        t = f["trends"]
+        verdicts.append("%s: increasingly vertical: %s; faster than the contact normals' "
+                        "anisotropy (a_f): %s" % (LINE_NAMES[line],
+                                                  t["a_total"]["slope_per_unit_a/c"]["verdict"],
+                                                  t["a_f"]["slope_per_unit_a/c"]["verdict"]))
+    return [claim, "; ".join(force_line_text(line, f) for line, f in lines.items()),
+            "; ".join(verdicts)]
 
 
 def crossing_row(data, key, claim):

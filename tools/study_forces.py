@@ -11,16 +11,18 @@ direction as the shape deviates from a sphere". Each deposit since the force mea
 * a_n + a_f: the force-weighted fabric's anisotropy, the forces' preference for the vertical;
 * K0 = sigma_xx / sigma_zz of the slab.
 
-Along the diagonal eta = zeta (spheres included) of the default law at delta_r 0, with the
-seed SD pooled per group of shapes (tools/study_stats.py), over the deposits that have them:
-per shape the mean and standard error of each; the weighted slope of each against the total
-aspect ratio a/c = eta zeta, and the thinnest shape against the roundest. "The force
-anisotropy grows with asphericity" is the slope of a_n + a_f; "faster than the geometric
-one" is the slope of a_f (the force-weighted anisotropy less the geometric a_n, per deposit).
+Along each line of shapes of the default law at delta_r 0, spheres included: the diagonal
+eta = zeta, the prolate line zeta = 1 and the oblate line eta = 1, with the seed SD pooled per
+group of shapes (tools/study_stats.py), over the deposits that have them: per shape the mean
+and standard error of each; the weighted slope of each against the total aspect ratio a/c =
+eta zeta, the thinnest shape against the roundest and, where a measure saturates, against
+the shape where it is largest. "The force anisotropy grows with
+asphericity" is the slope of a_n + a_f; "faster than the geometric one" is the slope of a_f
+(the force-weighted anisotropy less the geometric a_n, per deposit).
 """
 import math
 
-from study_stats import Pooled, decide, seeds_needed, weighted_slope
+from study_stats import LINES, Pooled, decide, on_line, seeds_needed, weighted_slope
 
 MEASURES = ("a_n", "a_f", "a_total", "K0")
 NAMES = {"a_n": "contact normals a_n", "a_f": "normal-force magnitude a_f",
@@ -52,27 +54,28 @@ def trend(pooled, shapes):
         {"slope": slope, "se": se, "from_a/c": x[0], "to_a/c": x[-1], "points": len(x)},
         **decide(slope / se, seeds_needed(slope, [(se, fewest)]), seeds, "grows with a/c",
                  "falls with a/c", dof))}
-    a, b = shapes[-1], shapes[0]
-    d, err = pooled.mean(a) - pooled.mean(b), math.hypot(pooled.se(a), pooled.se(b))
-    need = seeds_needed(d, [(pooled.se(a), len(pooled.values[a])),
-                            (pooled.se(b), len(pooled.values[b]))])
-    out["thinnest_minus_roundest"] = dict(
-        {"shapes": [list(a), list(b)], "difference": d, "se": err},
-        **decide(d / err, need, seeds, "larger at a/c %g" % x[-1],
-                 "smaller at a/c %g" % x[-1], min(pooled.dof(a), pooled.dof(b))))
+    out["thinnest_minus_roundest"] = difference(pooled, shapes[-1], shapes[0], seeds)
+    # a trend that saturates: the thinnest shape against the largest value before it
+    top = max(shapes[:-1], key=pooled.mean)
+    if pooled.mean(top) > pooled.mean(shapes[-1]):
+        out["thinnest_minus_largest"] = difference(pooled, shapes[-1], top, seeds)
     return out
 
 
-def forces(deposits):
-    """claims.json `forces` from the deposits of the default law at delta_r 0 (dicts with
-    eta, zeta and the columns of deposits.csv); None when no diagonal shape has two of them"""
-    by_shape = {}
-    for d in deposits:
-        m = measured(d)
-        e, z = float(d["eta"]), float(d["zeta"])
-        if m is not None and e == z:
-            by_shape.setdefault((e, z), []).append(m)
-    shapes = sorted(s for s, v in by_shape.items() if len(v) >= 2)
+def difference(pooled, a, b, seeds):
+    """shape a's mean less shape b's with its error and verdict"""
+    d, err = pooled.mean(a) - pooled.mean(b), math.hypot(pooled.se(a), pooled.se(b))
+    need = seeds_needed(d, [(pooled.se(a), len(pooled.values[a])),
+                            (pooled.se(b), len(pooled.values[b]))])
+    return dict({"shapes": [list(a), list(b)], "difference": d, "se": err},
+                **decide(d / err, need, seeds, "larger at a/c %g" % (a[0] * a[1]),
+                         "smaller at a/c %g" % (a[0] * a[1]), min(pooled.dof(a), pooled.dof(b))))
+
+
+def line_forces(by_shape, line):
+    """one line's entry of `forces`, or None when fewer than 3 of its shapes have two
+    deposits with the force measures"""
+    shapes = sorted(s for s, v in by_shape.items() if len(v) >= 2 and on_line(line, *s))
     if len(shapes) < 3:
         return None
     pooled = {q: Pooled({s: [m[q] for m in by_shape[s]] for s in shapes}) for q in MEASURES}
@@ -82,7 +85,20 @@ def forces(deposits):
         for q, p in pooled.items():
             row[q] = {"mean": p.mean(s), "se": p.se(s)}
         rows.append(row)
-    return {"line": "diagonal", "deposits": sum(len(by_shape[s]) for s in shapes),
+    return {"line": line, "deposits": sum(len(by_shape[s]) for s in shapes),
             "per_shape": rows,
             "errors": {q: p.groups for q, p in pooled.items()},
             "trends": {q: trend(p, shapes) for q, p in pooled.items()}}
+
+
+def forces(deposits):
+    """claims.json `forces` from the deposits of the default law at delta_r 0 (dicts with
+    eta, zeta and the columns of deposits.csv): {line: entry} for the lines of LINES that have
+    3 shapes with two deposits each; None when no line has"""
+    by_shape = {}
+    for d in deposits:
+        m = measured(d)
+        if m is not None:
+            by_shape.setdefault((float(d["eta"]), float(d["zeta"])), []).append(m)
+    lines = {line: line_forces(by_shape, line) for line in LINES}
+    return {k: v for k, v in lines.items() if v is not None} or None

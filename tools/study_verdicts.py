@@ -5,7 +5,8 @@ it is below 3 sigma, the seeds per point a 3-sigma verdict needs (tools/study_st
 * `maximum`: the diagonal maximum's position (statistical and fit-window errors) against the
   paper's 1.4 and the golden ratio, for every selection;
 * `ridge`: the diagonal maximum against the prolate and oblate maxima, as fitted maxima
-  (with the fit-window systematic) and between the highest measured points;
+  (with the fit-window systematic), between the highest measured points, and at equal a/c
+  across the maxima (the diagonal's shapes against the line interpolated in a/c);
 * `asymmetry`: X(eta, zeta) - X(zeta, eta), eta > zeta, over the map's pairs (X = phi, Z, Q_zz,
   a_z): mean, sign count, chi^2;
 * `delta_r`: Q_zz, a_z, phi and Z at delta_r > 0 against delta_r = 0 over the shapes, with the
@@ -25,6 +26,11 @@ from study_stats import (MIN_DOF, SIGMA, THIN, decide, seeds_needed, sign_test, 
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
 PAPER_ANGLES = {"contact_normals": 0.2, "long_axes": 1 / 3}    # pi/5, pi/3
+RIDGE_WINDOW = (1.4, 2.2)    # a/c across the spheroid lines' maxima (the study's set `ridge`)
+# the widest step in a/c a line is interpolated over: across the maximum a straight line over
+# 0.2 (the map's steps) is biased low by ~0.006 in phi (the prolate line falls 0.0078 from
+# a/c 1.8 to 2), over the set ridge's 0.1 steps about a quarter of that
+RIDGE_STEP = 0.1 + 1e-9
 
 
 def selection_name(key):
@@ -85,7 +91,44 @@ def ridge(maxima, base):
         out[name] = {"fitted": fitted, "highest": dict(
             {"diagonal": list(sa), "other": list(sb), "difference": dh, "se": se},
             **decide(z, need, seeds, yes, no, dof))}
+        equal = equal_aspect(base, name, yes, no)
+        if equal:
+            out[name]["equal_aspect"] = equal
     return out
+
+
+def equal_aspect(base, name, yes, no):
+    """phi on the diagonal less phi on a spheroid line at the same total aspect ratio a/c,
+    over the diagonal's shapes in the window RIDGE_WINDOW: the line's phi interpolated
+    linearly in a/c between its two neighbouring shapes (their errors propagated) where they
+    are at most RIDGE_STEP apart; per shape and their mean (mean_of_differences)"""
+    phi = base.quantity("phi")
+    line = [(x, s) for x, s in base.line(name) if phi.se(s) is not None]
+    rows, shapes = [], []
+    for x, s in base.line("diagonal"):
+        ac = x * x
+        if not RIDGE_WINDOW[0] <= ac <= RIDGE_WINDOW[1] or phi.se(s) is None:
+            continue
+        k = next((k for k in range(1, len(line)) if line[k - 1][0] <= ac <= line[k][0]), None)
+        if k is None:
+            continue
+        (x0, s0), (x1, s1) = line[k - 1], line[k]
+        if x1 - x0 > RIDGE_STEP:
+            continue
+        w = (ac - x0) / (x1 - x0)
+        at = (1 - w) * phi.mean(s0) + w * phi.mean(s1)
+        se = math.hypot((1 - w) * phi.se(s0), w * phi.se(s1))
+        var = ((1 - w) * phi.sd(s0)) ** 2 + (w * phi.sd(s1)) ** 2 + phi.sd(s) ** 2
+        rows.append((phi.mean(s) - at, math.hypot(phi.se(s), se), var))
+        shapes.append({"diagonal": list(s), "a/c": ac, "between": [list(s0), list(s1)],
+                       "difference": rows[-1][0], "se": rows[-1][1]})
+    if not rows:
+        return None
+    counts = sorted({len(base.phi[tuple(r["diagonal"])]) for r in shapes})
+    dof = min(base.pooled.dof(tuple(r["diagonal"])) for r in shapes)
+    mean = mean_of_differences(rows, "-".join("%d" % c for c in (counts[0], counts[-1]))
+                               if len(counts) > 1 else "%d" % counts[0], dof, yes, no)
+    return {"window_a/c": list(RIDGE_WINDOW), "per_shape": shapes, "mean": mean}
 
 
 def mean_of_differences(rows, seeds, dof, yes, no):

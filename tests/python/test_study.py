@@ -289,6 +289,9 @@ def test_paper_study_definition(tmp_path):
         assert len(points[(1.6, 1.8, dr, "coulomb")]) >= 2
     for v in (3.5, 4):    # the fall-back
         assert len(points[(v, v, 0.0, "coulomb")]) >= 4
+    for k in range(14, 23):    # the ridge: the spheroid lines at 0.1 steps across their maxima
+        for shape in ((k / 10, 1.0), (1.0, k / 10)):
+            assert len(points[shape + (0.0, "coulomb")]) >= 5
 
 
 def test_slurm_profile_dry_run(tmp_path):

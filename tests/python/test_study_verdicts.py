@@ -146,6 +146,29 @@ def test_asymmetry_delta_r_and_fall_back():
     assert f["end_minus_peak"]["z"] == pytest.approx(-0.25 / (0.01 * math.sqrt(2)), rel=1e-6)
 
 
+def test_ridge_at_equal_aspect_ratio():
+    """the diagonal against a spheroid line at equal a/c: phi linear in a/c on the line
+    (exact interpolation), the diagonal 0.002 above it; shapes whose line neighbours are
+    more than 0.1 apart in a/c, or outside a/c 1.4-2.2, are left out"""
+    out = []
+    for x in (1.0, 1.4, 1.5, 1.6, 1.7, 1.8, 1.9, 2.0, 2.4, 2.8):    # gap 2.0 -> 2.4
+        out += deposit(x, 1.0, 0.001, 0.60 + 0.01 * x, 6.0, 0.0, 0.1)
+    for v in (1.2, 1.3, 1.4, 1.5, 1.6):    # a/c 1.44, 1.69, 1.96, 2.25 (out), 2.56 (out)
+        out += deposit(v, v, 0.001, 0.602 + 0.01 * v * v, 6.0, 0.0, 0.1)
+    e = study_verdicts.equal_aspect(Selection(out), "prolate", "diagonal higher", "lower")
+    assert [p["diagonal"] for p in e["per_shape"]] == [[1.2, 1.2], [1.3, 1.3], [1.4, 1.4]]
+    assert [p["between"][0] for p in e["per_shape"]] == [[1.4, 1.0], [1.6, 1.0], [1.9, 1.0]]
+    for p in e["per_shape"]:
+        assert p["difference"] == pytest.approx(0.002, abs=1e-12)
+    # every SD is 0.001 sqrt 2: a shape's SE 0.001, the interpolated line's 0.001 |(1-w, w)|
+    w = [(1.44 - 1.4) / 0.1, (1.69 - 1.6) / 0.1, (1.96 - 1.9) / 0.1]
+    se = [0.001 * math.sqrt(1 + (1 - k) ** 2 + k ** 2) for k in w]
+    assert [p["se"] for p in e["per_shape"]] == pytest.approx(se, rel=1e-6)
+    assert e["mean"]["mean"] == pytest.approx(0.002) and e["mean"]["positive"] == 3
+    assert e["mean"]["se"] == pytest.approx(math.sqrt(sum(x * x for x in se)) / 3, rel=1e-6)
+    assert study_verdicts.equal_aspect(Selection(out), "oblate", "higher", "lower") is None
+
+
 def test_crossings_and_sphere_isotropy():
     base = selection()
     both = study_histograms.crossings_both(base, study_verdicts.PAPER_ANGLES)
@@ -173,7 +196,8 @@ def test_force_trends_along_the_diagonal():
                              "a_f": 0.2 + 0.05 * ac + s * e, "K0": 0.7 + s * e})
         deposits.append({"eta": v, "zeta": v, "a_n": "nan", "a_f": "nan", "K0": "nan"})
     deposits += [{"eta": 2.0, "zeta": 1.0, "a_n": 9.0, "a_f": 9.0, "K0": 9.0}] * 2
-    f = study_forces.forces(deposits)
+    assert list(study_forces.forces(deposits)) == ["diagonal"]    # (2, 1): one prolate shape
+    f = study_forces.forces(deposits)["diagonal"]
     assert f["deposits"] == 10 and [r["a/c"] for r in f["per_shape"]] == pytest.approx(
         [1, 1.44, 1.96, 4, 9])
     ac = np.array([1, 1.44, 1.96, 4, 9])
@@ -189,6 +213,26 @@ def test_force_trends_along_the_diagonal():
     assert end["shapes"] == [[3.0, 3.0], [1.0, 1.0]]
     assert end["difference"] == pytest.approx(0.16) and end["se"] == pytest.approx(e * 2 ** .5)
     assert study_forces.forces(deposits[:6]) is None    # fewer than 3 shapes
+
+
+def test_force_trends_along_the_spheroid_lines():
+    """study_forces: the prolate (zeta = 1) and oblate (eta = 1) lines start at the spheres and
+    are fitted against a/c apart from each other and from the diagonal"""
+    e, deposits = 0.01, []
+    for v in (1.0, 1.5, 2.0):
+        for s in (1, -1):
+            deposits.append({"eta": v, "zeta": 1.0, "a_n": 0.1 * v + s * e, "a_f": s * e,
+                             "K0": 1.0 + s * e})
+            if v > 1:
+                deposits.append({"eta": 1.0, "zeta": v, "a_n": -0.3 * v + s * e, "a_f": s * e,
+                                 "K0": 1.0 + s * e})
+    f = study_forces.forces(deposits)
+    assert sorted(f) == ["oblate", "prolate"]
+    assert [r["zeta"] for r in f["prolate"]["per_shape"]] == [1, 1, 1]
+    assert [r["eta"] for r in f["oblate"]["per_shape"]] == [1, 1, 1]
+    assert f["prolate"]["trends"]["a_n"]["slope_per_unit_a/c"]["slope"] == pytest.approx(0.1)
+    oblate = f["oblate"]["per_shape"]
+    assert [r["a_n"]["mean"] for r in oblate] == pytest.approx([0.1, -0.45, -0.6])
 
 
 def test_force_figure_from_the_deposits_files(tmp_path):
@@ -228,6 +272,6 @@ def test_force_figure_from_the_deposits_files(tmp_path):
         dict({"eta": v, "zeta": v, "a/c": v * v, "seeds": 2},
              **{q: {"mean": 0.1 * v, "se": e} for q in study_forces.MEASURES})
         for v in (1.0, 1.4, 2.0)]}
-    path = plot_forces.figure({"forces": forces}, deposits, str(tmp_path / "f.png"), "test")
+    path = plot_forces.figure({"forces": {"diagonal": forces}}, deposits, str(tmp_path / "f.png"), "test")
     assert os.path.getsize(path) > 10000
     assert plot_forces.figure({}, deposits, str(tmp_path / "g.png"), "test") is None

@@ -1,7 +1,6 @@
 """fix wall/gran/ellipsoid: resting states, wall force, a small pour that settles, errors."""
 
 import math
-import re
 
 import numpy as np
 import pytest
