@@ -77,6 +77,8 @@ def remeasure(run_dir, into):
                      "measure_rest": values["at_rest"], "N": values["N"], "eta": values["eta"],
                      "zeta": values["zeta"], "dr": values["delta_r"], "seed": values["seed"],
                      "image": "0", "out": tmp}
+        if "box_width" in values:    # the box of a deposit poured at a given width
+            variables["width"] = values["box_width"]
         args = ["-log", os.path.join(tmp, "log.lammps"), "-screen", "none", "-nocite"]
         for key, value in variables.items():
             args += ["-var", key, str(value)]

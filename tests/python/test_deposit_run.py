@@ -8,6 +8,7 @@ import math
 import os
 
 import deposit_run
+import pytest
 
 from study_helpers import PY, TOOLS, assert_image, run
 
@@ -56,3 +57,26 @@ def test_default_deposit(tmp_path):
     assert abs(a / b - 1.4) < 1e-6 and abs(b / c - 1.8) < 1e-6
     # the tall box is split in x and y only, so both ranks hold particles
     assert "2 by 1 by 1 MPI processor grid" in open(out / "log.lammps").read()
+    # packing.dat's box_width is the box's edge: 0.3 sqrt(40) = 1.9 d is below the least
+    # edge, two neighbour cutoffs of the longest particles, 4 bmax + 2 skin
+    bmax = 0.5 * 1.6 * (1.4 ** 2 * 1.8) ** (1 / 3)
+    edge = max(5.0, 4 * bmax + 0.4)
+    assert float(pk["box_width"]) == pytest.approx(edge, rel=1e-12)
+    assert dump_edge(lines) == pytest.approx(edge, rel=1e-12)
+
+
+def dump_edge(lines):
+    """the x edge of a dump's box (its lines)"""
+    lo, hi = map(float, lines[5].split()[:2])
+    return hi - lo
+
+
+def test_deposit_in_a_box_of_given_width(tmp_path):
+    """in.deposit's width sets the box's edge (a deeper deposit of the same N)"""
+    out = tmp_path / "dep"
+    run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "40", "--ketol", "1e-2",
+         "--out", str(out), "--quiet", "--no-image", "--no-plots", "--var", "width", "7.5"],
+        str(tmp_path), 600)
+    lines = open(out / "deposit.dump").read().splitlines()
+    assert dump_edge(lines) == pytest.approx(7.5, rel=1e-12)
+    assert "box_width 7.5\n" in open(out / "packing.dat").read()

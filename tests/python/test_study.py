@@ -262,17 +262,23 @@ def test_paper_study_definition(tmp_path):
                str(tmp_path), 300)
     runs = {line.split("wildcards:")[1].strip() for line in text.splitlines()
             if "wildcards:" in line}
-    points = {}
+    points, boxes = {}, {}    # at N 3000 in its default box; at another N or box
     for w in runs:
         d = dict(kv.strip().split("=") for kv in w.split(","))
         key = (float(d["eta"]), float(d["zeta"]), float(d["dr"]), d["law"])
         assert int(d["N"]) >= 3000
-        points.setdefault(key, set()).add(int(d["seed"]))
+        if int(d["N"]) == 3000 and not d["box"]:
+            points.setdefault(key, set()).add(int(d["seed"]))
+        else:
+            boxes.setdefault(key + (int(d["N"]), d["box"]), set()).add(int(d["seed"]))
     # one time step for every deposit (the config's vars reach the runner) but those at
-    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars): 46 deposits and the picture
+    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars): 46 deposits at N 3000, 15
+    # at matched depth and the picture
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
     damped = [line for line in commands if " --dr 0.6 " in line]
-    assert len(damped) == 47 and all("--var dt 0.00042" in line for line in damped), damped
+    assert len(damped) == 62 and all("--var dt 0.00042" in line for line in damped), damped
+    # a set's own box reaches in.deposit as its width, and only there
+    assert all(("--var width 16.4317" in line) == ("_W16.4317_" in line) for line in commands)
     assert all("--var dt 0.0006" in line for line in commands if line not in damped)
     assert len(commands) > 250
     grid = [1, 1.2, 1.4, 1.6, 1.8, 2, 2.5, 3]
@@ -289,6 +295,12 @@ def test_paper_study_definition(tmp_path):
         assert len(points[(1.6, 1.8, dr, "coulomb")]) >= 2
     for v in (3.5, 4):    # the fall-back
         assert len(points[(v, v, 0.0, "coulomb")]) >= 4
+    for dr, n in ((0.3, 3250), (0.6, 4327)):    # delta_r at matched depth: N / mean volume
+        for shape in ((1.0, 1.0), (1.4, 1.4), (2.0, 2.0), (3.0, 3.0), (1.6, 1.8)):
+            assert len(boxes[shape + (dr, "coulomb", n, "_W16.4317")]) >= 3
+    for n, box in ((12000, ""), (12000, "_W16.4317")):    # finite size: wider, deeper
+        assert len(boxes[(1.4, 1.8, 0.0, "coulomb", n, box)]) >= 3
+    assert len(points[(1.4, 1.8, 0.0, "coulomb")]) >= 3
     for k in range(14, 23):    # the ridge: the spheroid lines at 0.1 steps across their maxima
         for shape in ((k / 10, 1.0), (1.0, k / 10)):
             assert len(points[shape + (0.0, "coulomb")]) >= 5
