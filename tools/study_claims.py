@@ -42,8 +42,10 @@ above a/c = 4; `errors` lists every group's SD and degrees of freedom per quanti
 * `laws`: for each other tangential law and each delta_r it was run at: its diagonal
   maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings;
 * `forces`: the force measures a_n, a_f, a_n + a_f and K0 along the diagonal and the spheroid
-  lines (a key per line), their trends
-  against a/c and verdicts (tools/study_forces.py), over the deposits that have them;
+  lines (a key per line), their trends against a/c and verdicts (tools/study_forces.py), over
+  the deposits that have them;
+* `depth`: delta_r at matched depth beside delta_r at the study's N, and the finite-size
+  check (tools/study_depth.py; the deposits at another N or box); null without them;
 * `verdicts`: each claim's comparison with its significance and the seeds per point a
   3-sigma verdict needs (tools/study_verdicts.py, tools/study_histograms.py).
 """
@@ -60,6 +62,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_histo, read_packing  # noqa: E402
 from study_claims_md import markdown  # noqa: E402
 from study_stats import LINES, Pooled, line_maximum, on_line  # noqa: E402
+from study_depth import depth_claims  # noqa: E402
 from study_forces import forces  # noqa: E402
 from study_verdicts import verdicts  # noqa: E402
 
@@ -113,6 +116,10 @@ class Selection:
         self.shapes = dict(sorted(self.shapes.items()))
         self.phi = {s: [float(d["phi"]) for d in v] for s, v in self.shapes.items()}
         self.pooled = Pooled(self.phi)
+
+    def subset(self, keep):
+        """the Selection of the deposits d with keep(d)"""
+        return Selection([d for d in self.deposits if keep(d)])
 
     def has(self, name):
         """whether every deposit has a value of this column (older tables lack some)"""
@@ -290,8 +297,15 @@ def histograms_with_delta_r(by_delta_r):
 
 
 def load_deposits(results, n):
-    """the deposits at N, each with its folder and its two histograms (theta, P)"""
-    deposits = [d for d in read_csv(os.path.join(results, "deposits.csv")) if int(d["N"]) == n]
+    """the deposits at N in in.deposit's default box, each with its folder and its two
+    histograms (theta, P)"""
+    return [d for d in load_all_deposits(results) if int(d["N"]) == n and not d.get("width")]
+
+
+def load_all_deposits(results):
+    """every deposit of deposits.csv, each with its folder, its two histograms (theta, P) and
+    its measuring slab's thickness"""
+    deposits = read_csv(os.path.join(results, "deposits.csv"))
     for d in deposits:
         d["folder"] = os.path.join(results, "points", d["point"], "s%s" % d["seed"])
         for name, _, _ in HISTOGRAMS.values():
@@ -304,9 +318,11 @@ def load_deposits(results, n):
 
 def claims(results, law, n):
     rng = np.random.default_rng(20261201)    # one stream, drawn in the order of the keys
+    everything = Selection(load_all_deposits(results))
     groups = {}
-    for d in load_deposits(results, n):
-        groups.setdefault((float(d["delta_r"]), d["law"]), []).append(d)
+    for d in everything.deposits:
+        if int(d["N"]) == n and not d.get("width"):
+            groups.setdefault((float(d["delta_r"]), d["law"]), []).append(d)
     selections = {key: Selection(v) for key, v in sorted(groups.items())}
     base = selections.get((0.0, law), Selection([]))
     maxima = {}
@@ -334,6 +350,7 @@ def claims(results, law, n):
                     "crossings": crossings(sel)}
                    for (dr, name), sel in selections.items() if name != law]
     out["forces"] = forces(base.deposits)
+    out["depth"] = depth_claims(everything, law, n)
     out["verdicts"] = verdicts(out, selections, law)
     return out
 

@@ -55,7 +55,7 @@ class Data:
         law = law or self.law
         return next(r for r in self.rows if (float(r["eta"]), float(r["zeta"]),
                                              float(r["delta_r"]), r["law"]) ==
-                    shape + (dr, law) and int(r["N"]) == self.n)
+                    shape + (dr, law) and int(r["N"]) == self.n and not r.get("width"))
 
     def pores(self, key):
         """{quantity: Pooled} of pores.json over the deposits that have one"""
@@ -172,6 +172,51 @@ def forces_block(data):
                               trends))
 
 
+DEPTH_QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
+
+
+def effect_cell(m, digits):
+    return "%s (%s): %s" % (pm(m["mean"], m["se"], digits), z_cell(m), m["verdict"])
+
+
+def thickness(d):
+    return "-" if d is None else "%.1f" % d["thickness_mean"]
+
+
+def depth_block(data):
+    """delta_r at matched depth beside the study's N, and the finite-size check (claims.json
+    `depth`, tools/study_depth.py)"""
+    c = data.claims.get("depth")
+    if c is None:
+        return ("No deposit at matched depth or at another N yet (the sets matched_depth_* and "
+                "finite_size_* of workflow/config/paper.yaml).")
+    rows = []
+    for m in c["matched"]:
+        t = m["depth"]
+        for q in (q for q in DEPTH_QUANTITIES if q in m["matched_depth"]):
+            rows.append(["%g" % m["delta_r"], "%d shapes, N %s" % (
+                len(m["shapes"]), "/".join("%d" % n for n in m["N"])), q,
+                effect_cell(m["matched_depth"][q], 4 if q == "phi" else 3),
+                effect_cell(m["study_N"][q], 4 if q == "phi" else 3) if q in m["study_N"]
+                else "-", "%s / %s / %s" % (thickness(t["matched"]), thickness(t["study_N"]),
+                                            thickness(t["delta_r_0"]))])
+    out = [table(["delta_r", "matched points", "quantity", "X(delta_r) - X(0), matched depth",
+                  "X(delta_r) - X(0), N %d" % data.n, "slab (d): matched / N %d / delta_r 0"
+                  % data.n], rows)] if rows else []
+    rows = []
+    for f in c["finite_size"]:
+        box = "N %d, %s" % (f["N"], "default box" if f["width"] is None
+                            else "box edge %g d" % f["width"])
+        for q in (q for q in DEPTH_QUANTITIES if q in f["effects"]):
+            rows.append([box, ", ".join(shape(s) for s in f["shapes"]), q,
+                         effect_cell(f["effects"][q], 4 if q == "phi" else 3),
+                         "%s / %s" % (thickness(f["depth"]), thickness(f["depth_at_study_N"]))])
+    if rows:
+        out.append(table(["deposits", "shapes", "quantity", "X - X(N %d)" % data.n,
+                          "slab (d): these / N %d" % data.n], rows))
+    return "\n\n".join(out)
+
+
 def porous_block(data):
     pores = data.pores((0.0, data.law))
     t = [json.load(open(os.path.join(d["folder"], "pores.json")))
@@ -201,7 +246,8 @@ def blocks(data):
             "lines": lines_block(data), "diagonal": diagonal_block(data),
             "map_phi": map_block(data, "phi", 4), "map_z": map_block(data, "Z", 2),
             "claims": claims_block(data), "verdicts": verdicts_block(data),
-            "forces": forces_block(data), "porous": porous_block(data)}
+            "forces": forces_block(data), "depth": depth_block(data),
+            "porous": porous_block(data)}
 
 
 def render(text, generated):

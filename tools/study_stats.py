@@ -23,6 +23,11 @@ from scipy import stats
 MIN_DOF = 4
 THIN = 4.0                 # a/c from which a general shape counts as thin
 SIGMA = 3.0                # a verdict needs this many standard errors
+LARGE = 1000               # seeds per point beyond any study: "more than LARGE"
+BOOTSTRAP = 2000
+WINDOWS = (("parabola 3", 3, 2), ("parabola 5", 5, 2), ("parabola 7", 7, 2), ("cubic 7", 7, 3))
+NOMINAL = "parabola 5"
+
 # the study's lines of shapes: name -> (on the line, beyond the spheres; the axis that is x)
 LINES = {"diagonal": (lambda e, z: e == z, "eta"),
          "prolate": (lambda e, z: z == 1.0 and e > 1.0, "eta"),
@@ -32,10 +37,6 @@ LINES = {"diagonal": (lambda e, z: e == z, "eta"),
 def on_line(name, eta, zeta):
     """whether the shape lies on the line, spheres included"""
     return LINES[name][0](eta, zeta) or eta == zeta == 1.0
-LARGE = 1000               # seeds per point beyond any study: "more than LARGE"
-BOOTSTRAP = 2000
-WINDOWS = (("parabola 3", 3, 2), ("parabola 5", 5, 2), ("parabola 7", 7, 2), ("cubic 7", 7, 3))
-NOMINAL = "parabola 5"
 
 
 def shape_group(eta, zeta):

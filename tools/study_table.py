@@ -3,7 +3,8 @@
 
     study_table.py --results DIR DIR/points/<point>/s<seed>/packing.dat ...
 
-<point> is eta<eta>_zeta<zeta>_dr<delta_r>_N<N>_<law> (law: a name of the study's config);
+<point> is eta<eta>_zeta<zeta>_dr<delta_r>_N<N>[_W<width>]_<law> (law: a name of the study's
+config; width: the box's edge of a set that gives one, empty in the tables otherwise);
 each deposit folder holds packing.dat, contact_histo.dat and orient_histo.dat of one seed.
 Writes into DIR:
   deposits.csv   one row per deposit: the point, its seed and its numbers
@@ -17,6 +18,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import sys
 from collections import defaultdict
 
@@ -25,12 +27,18 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_histo, read_packing  # noqa: E402
 
-KEYS = ["eta", "zeta", "delta_r", "N", "law"]
+KEYS = ["eta", "zeta", "delta_r", "N", "width", "law"]
 # the force measures (K0 ... a_f) are nan for deposits whose packing.dat predates them
 QUANTITIES = ["phi", "Z", "Z_no_rattlers", "rattler_fraction", "fabric_anisotropy",
               "nematic_S", "Qzz", "Nslab", "steps", "wall_seconds", "K0",
               "fabric_anisotropy_force", "a_n", "a_f"]
 HISTOGRAMS = {"contact_histo": "contact_mean.dat", "orient_histo": "orient_mean.dat"}
+
+
+def point_width(point):
+    """the box edge a point's name gives (_W<width> after its N), or "" (in.deposit's default)"""
+    m = re.search(r"_N[0-9]+_W([0-9.]+)_", point)
+    return float(m.group(1)) if m else ""
 
 
 def deposit_row(packing_path):
@@ -39,6 +47,7 @@ def deposit_row(packing_path):
     pk = read_packing(packing_path)
     row = {"point": point, "law": point.rsplit("_", 1)[1], "seed": int(pk["seed"]),
            "eta": pk["eta"], "zeta": pk["zeta"], "delta_r": pk["delta_r"], "N": int(pk["N"]),
+           "width": point_width(point),
            "rattler_fraction": pk["rattlers"] / pk["Nslab"] if pk["Nslab"] > 0 else math.nan,
            "resumed_from": int(pk["resumed_from"]) if "resumed_from" in pk else "",
            "at_rest": pk.get("at_rest", 1) == 1}    # older packing.dat: written at rest only

@@ -187,32 +187,38 @@ def depth(selection):
             "solid_per_area_mean": float(solid.mean())}
 
 
+def shape_effects(sel, base, label, shapes=None):
+    """per quantity: X(sel) - X(base) over the shapes both have (of `shapes` if given; Q_zz
+    without the sphere, whose long axis is arbitrary), their mean and its verdict ("larger" or
+    "smaller" + label)"""
+    out = {}
+    for q in (q for q in QUANTITIES if sel.has(q) and base.has(q)):
+        p, p0 = sel.quantity(q), base.quantity(q)
+        common = [s for s in p.values if s in p0.values and (shapes is None or s in shapes)
+                  and not (q == "Qzz" and s == (1.0, 1.0))]
+        if not common or any(p.se(s) is None or p0.se(s) is None for s in common):
+            continue
+        rows = [(p.mean(s) - p0.mean(s), math.hypot(p.se(s), p0.se(s)),
+                 p.sd(s) ** 2 + p0.sd(s) ** 2) for s in common]
+        counts = sorted({len(v[s]) for v in (p.values, p0.values) for s in common})
+        seeds = "%d" % counts[0] if len(counts) == 1 else "%d-%d" % (counts[0], counts[-1])
+        dof = min(g["dof"] for g in list(p.groups.values()) + list(p0.groups.values()))
+        m = mean_of_differences(rows, seeds, dof, "larger " + label, "smaller " + label)
+        scale = float(np.mean([abs(p0.mean(s)) for s in common]))
+        m["relative"] = m["mean"] / scale if scale else None
+        out[q] = m
+    return out
+
+
 def delta_r_effects(selections, law):
     """per delta_r > 0 of the default law and quantity: X(delta_r) - X(0) over the shapes
-    present at both (Q_zz: without the sphere, whose long axis is arbitrary)"""
+    present at both"""
     base = selections.get((0.0, law))
     if base is None:
         return []
-    out = []
-    for (dr, name), sel in selections.items():
-        if name != law or dr == 0.0:
-            continue
-        entry = {"delta_r": dr, "depth": depth(sel), "depth_at_0": depth(base)}
-        for q in (q for q in QUANTITIES if sel.has(q) and base.has(q)):
-            p, p0 = sel.quantity(q), base.quantity(q)
-            shapes = [s for s in p.values if s in p0.values and not (q == "Qzz" and
-                                                                    s == (1.0, 1.0))]
-            if not shapes or any(p.se(s) is None or p0.se(s) is None for s in shapes):
-                continue
-            rows = [(p.mean(s) - p0.mean(s), math.hypot(p.se(s), p0.se(s)),
-                     p.sd(s) ** 2 + p0.sd(s) ** 2) for s in shapes]
-            dof = min(g["dof"] for g in list(p.groups.values()) + list(p0.groups.values()))
-            m = mean_of_differences(rows, "2-3", dof, "larger at delta_r %g" % dr,
-                                    "smaller at delta_r %g" % dr)
-            m["relative"] = m["mean"] / float(np.mean([abs(p0.mean(s)) for s in shapes]))
-            entry[q] = m
-        out.append(entry)
-    return out
+    return [dict({"delta_r": dr, "depth": depth(sel), "depth_at_0": depth(base)},
+                 **shape_effects(sel, base, "at delta_r %g" % dr))
+            for (dr, name), sel in selections.items() if name == law and dr != 0.0]
 
 
 def slope_entry(z, shapes):

@@ -53,3 +53,35 @@ def test_missing_markers_fail(page):
     page.write_text(text.replace("<!-- END generated: verdicts -->", ""))
     out = check(page)
     assert out.returncode != 0 and "no markers for the table 'verdicts'" in out.stderr
+
+
+def test_the_depth_block_from_its_claims():
+    """the matched-depth and finite-size table (claims.json `depth`) writes each effect with
+    its error and verdict and the slabs' thicknesses; without such deposits it says so"""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    import study_doc
+
+    def effect(mean, se):
+        return {"mean": mean, "se": se, "z": mean / se, "dof": 10, "z_equivalent": mean / se,
+                "verdict": "v%g" % mean}
+
+    depth = {"matched": [{"delta_r": 0.6, "N": [4327], "width": [16.4317],
+                          "shapes": [[1.4, 1.4], [2.0, 2.0]],
+                          "depth": {"matched": {"thickness_mean": 7.04},
+                                    "study_N": {"thickness_mean": 4.5},
+                                    "delta_r_0": {"thickness_mean": 7.0}},
+                          "matched_depth": {"phi": effect(0.0031, 0.0007)},
+                          "study_N": {"phi": effect(0.0112, 0.0007)}}],
+             "finite_size": [{"N": 12000, "width": None, "shapes": [[1.4, 1.8]],
+                              "depth": {"thickness_mean": 6.9},
+                              "depth_at_study_N": {"thickness_mean": 7.1},
+                              "effects": {"Z": effect(-0.05, 0.04)}}]}
+    data = type("Data", (), {"claims": {"depth": depth}, "n": 3000})()
+    text = study_doc.depth_block(data)
+    assert "| 0.6 | 2 shapes, N 4327 | phi | 0.0031 +- 0.0007" in text
+    assert "v0.0031" in text and "0.0112 +- 0.0007" in text and "v0.0112" in text
+    assert "7.0 / 4.5 / 7.0" in text
+    assert "| N 12000, default box | (1.4, 1.8) | Z | -0.050 +- 0.040" in text
+    assert "6.9 / 7.1" in text
+    data.claims = {"depth": None}
+    assert study_doc.depth_block(data).startswith("No deposit at matched depth")

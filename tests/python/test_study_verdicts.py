@@ -169,6 +169,43 @@ def test_ridge_at_equal_aspect_ratio():
     assert study_verdicts.equal_aspect(Selection(out), "oblate", "higher", "lower") is None
 
 
+def test_delta_r_at_matched_depth_and_finite_size():
+    """study_depth: the matched-depth effect beside the study-N effect on the same shapes, and
+    each other box against the study's, from known shifts of phi (seeds at +-e: each point's
+    SE is e, a difference's e sqrt 2)"""
+    import study_depth
+    e, out = 0.001, []
+
+    def add(shapes, dr, n, width, shift, slab):
+        for v in shapes:
+            for d in deposit(v, v, e, 0.6 + 0.01 * v + shift, 6.0, 0.0, 0.1):
+                out.append(dict(d, law="coulomb", delta_r=dr, N=n, width=width, slab=slab))
+    add((1.0, 1.4, 2.0, 3.0), 0.0, 3000, "", 0.0, 7.0)
+    add((1.0, 1.4, 2.0, 3.0), 0.6, 3000, "", -0.100, 4.0)
+    add((1.4, 2.0), 0.6, 4327, 16.4317, 0.050, 7.0)
+    add((1.4,), 0.0, 12000, "", 0.002, 7.0)
+    add((1.4,), 0.0, 12000, 16.4317, -0.003, 40.0)
+    c = study_depth.depth_claims(Selection(out), "coulomb", 3000)
+    (m,) = c["matched"]
+    assert m["delta_r"] == 0.6 and m["N"] == [4327] and m["width"] == [16.4317]
+    assert m["shapes"] == [[1.4, 1.4], [2.0, 2.0]]
+    assert m["matched_depth"]["phi"]["mean"] == pytest.approx(0.05)
+    assert m["matched_depth"]["phi"]["n"] == 2
+    assert m["matched_depth"]["phi"]["se"] == pytest.approx(e, rel=1e-6)    # e sqrt 2 / sqrt 2
+    assert m["study_N"]["phi"]["mean"] == pytest.approx(-0.1) and m["study_N"]["phi"]["n"] == 2
+    assert m["matched_depth"]["phi"]["verdict"].startswith("larger at delta_r 0.6, matched")
+    assert m["study_N"]["phi"]["verdict"].startswith("smaller at delta_r 0.6, N 3000")
+    assert (m["depth"]["matched"]["thickness_mean"], m["depth"]["study_N"]["thickness_mean"],
+            m["depth"]["delta_r_0"]["thickness_mean"]) == (7.0, 4.0, 7.0)
+    wide, deep = c["finite_size"]
+    assert (wide["N"], wide["width"], deep["N"], deep["width"]) == (12000, None, 12000, 16.4317)
+    assert wide["effects"]["phi"]["mean"] == pytest.approx(0.002)
+    assert deep["effects"]["phi"]["mean"] == pytest.approx(-0.003)
+    assert deep["effects"]["phi"]["se"] == pytest.approx(e * math.sqrt(2), rel=1e-6)
+    assert deep["depth"]["thickness_mean"] == 40.0 and wide["shapes"] == [[1.4, 1.4]]
+    assert study_depth.depth_claims(Selection(out[:8]), "coulomb", 3000) is None
+
+
 def test_crossings_and_sphere_isotropy():
     base = selection()
     both = study_histograms.crossings_both(base, study_verdicts.PAPER_ANGLES)
