@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 
+from study_stats import SIGMA
+
 SIG = "%.1f sigma"
 
 
@@ -143,9 +145,12 @@ def fall_back_rows(v):
                            ("end_minus_highest_spheroid", "Z%s - Z%s (end - highest spheroid)")):
             if key in f:
                 s = f[key]
+                fall = ("" if key != "end_minus_peak" else
+                        "; a fall larger than %.2f excluded at %g sigma"
+                        % (s["largest_fall"], SIGMA))
                 rows.append(["Z along eta = zeta, %s: " % tag
                              + label % (shape(s["shapes"][0]), shape(s["shapes"][1])),
-                             pm(s["difference"], s["se"], 3), z_cell(s), s["verdict"]])
+                             pm(s["difference"], s["se"], 3) + fall, z_cell(s), s["verdict"]])
     return rows
 
 

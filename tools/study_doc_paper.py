@@ -6,9 +6,8 @@ import math
 from scipy import stats
 
 from study_doc_claims import pm, shape, table, z_cell, z_text
-from study_stats import equivalent_sigma
+from study_stats import SIGMA, equivalent_sigma
 
-SIGMA = 3.0
 RCP = 0.64                  # random close packing of spheres
 DONEV_MAX = 0.735           # Donev et al. 2004, jammed ellipsoids near 1.25:1:0.8
 ZHOU = (1.8, 0.6)           # Zhou et al. 2011, densest gravity-packed prolate / oblate a/c
@@ -151,18 +150,23 @@ def z_row(data):
     above = [g for g in general if diff(z, g, top_s)[2] >= bonferroni]
     fb = next((f for f in data.claims["verdicts"]["fall_back"] if f["law"] == data.law), {})
     slope = fb.get("slope_thin", {})
+    end = fb.get("end_minus_peak")
     return ["Z rises for spheroids, peaks higher for general ellipsoids, falls back for "
             "eta = zeta >> 1",
             "spheres %s; highest spheroid %s %s (rise %s); highest general shape %s %s (above "
             "the spheroids' %s; the highest of noisy points is biased upwards); %d of %d "
             "general shapes lie above the highest spheroid by %.1f sigma or more each (3 sigma, "
-            "Bonferroni-corrected); slope over eta = zeta >= 2: %s per unit eta (%s)"
+            "Bonferroni-corrected); slope over eta = zeta >= 2: %s per unit eta (%s)%s"
             % (pm(z.mean(sphere), z.se(sphere), 2), shape(top_s), pm(z.mean(top_s),
                                                                       z.se(top_s), 2),
                dtext(*rise[:2], 2, rise[3]), shape(top_g), pm(z.mean(top_g), z.se(top_g), 2),
                dtext(*higher[:2], 2, higher[3]), len(above), len(general), bonferroni,
-               pm(slope.get("slope", math.nan),
-                                                   slope.get("se"), 3), z_cell(slope)),
+               pm(slope.get("slope", math.nan), slope.get("se"), 3), z_cell(slope),
+               "" if end is None else "; the thinnest against the highest, %s - %s: %s, a "
+               "fall larger than %.2f excluded at %g sigma"
+               % (shape(end["shapes"][0]), shape(end["shapes"][1]),
+                  dtext(end["difference"], end["se"], 2, end.get("dof")), end["largest_fall"],
+                  SIGMA)),
             "rises: %s; peaks higher: %s; falls back: %s (the verdict table below)"
             % ("yes" if rise[2] >= SIGMA else "undecided", "yes" if above else
                "undecided", slope.get("verdict", "-"))]

@@ -258,7 +258,10 @@ def fall_back(sel):
             continue
         d, se = z.mean(a) - z.mean(b), math.hypot(z.se(a), z.se(b))
         need = seeds_needed(d, [(z.se(a), len(z.values[a])), (z.se(b), len(z.values[b]))])
-        out[key] = dict({"shapes": [list(a), list(b)], "difference": d, "se": se},
+        out[key] = dict({"shapes": [list(a), list(b)], "difference": d, "se": se,
+                         # the largest fall the data leave open at SIGMA: what "no fall-back"
+                         # means where the difference is undecided
+                         "largest_fall": max(0.0, SIGMA * se - d)},
                         **decide(d / se, need, len(z.values[a]), "higher", "lower",
                                  min(z.dof(a), z.dof(b))))
     return out

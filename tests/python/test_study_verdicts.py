@@ -144,6 +144,8 @@ def test_asymmetry_delta_r_and_fall_back():
     assert f["slope_thin"]["verdict"] == "falls"
     assert f["end_minus_peak"]["difference"] == pytest.approx(-0.25, rel=1e-9)
     assert f["end_minus_peak"]["z"] == pytest.approx(-0.25 / (0.01 * math.sqrt(2)), rel=1e-6)
+    # the largest fall the data leave open at 3 sigma: the fall plus 3 standard errors
+    assert f["end_minus_peak"]["largest_fall"] == pytest.approx(0.25 + 3 * 0.01 * math.sqrt(2))
 
 
 def test_ridge_at_equal_aspect_ratio():
