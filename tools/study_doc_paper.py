@@ -29,11 +29,20 @@ def dtext(d, se, digits, dof=None):
     return "%+.*f +- %.*f (%s)" % (digits, d, digits, se, z)
 
 
+def shared_diagonal(data):
+    """the laws at delta_r 0 and the diagonal shapes every one of them has, so that the laws
+    are compared over one range (the fall-back's a/c 12 and 16 ran with the default law only)"""
+    laws = sorted({k[1] for k in data.sels if k[0] == 0.0})
+    shapes = set.intersection(*({s for s in data.sels[(0.0, law)].shapes if s[0] == s[1]}
+                                for law in laws))
+    return laws, sorted(shapes)
+
+
 def density_rise_fall(data):
     out, ratios, peaks = [], [], []
-    for law in sorted({k[1] for k in data.sels if k[0] == 0.0}):
+    laws, diag = shared_diagonal(data)
+    for law in laws:
         p = data.sels[(0.0, law)].quantity("phi")
-        diag = sorted(s for s in p.values if s[0] == s[1])
         top = max(diag, key=p.mean)
         rise, fall = diff(p, top, diag[0]), diff(p, diag[-1], top)
         ratios.append("%s %.1f" % (law, -fall[0] / rise[0]))
@@ -46,7 +55,7 @@ def density_rise_fall(data):
     return ["density rises from spheres, peaks, then falls slowly with asphericity",
             "; ".join(out),
             "rises and peaks (both at 3 sigma): " + ", ".join(peaks) + ". Falls slowly: the "
-            "fall to the thinnest diagonal shape is this many times the rise: "
+            "fall to the thinnest diagonal shape all laws have is this many times the rise: "
             + ", ".join(ratios) + " (the reader judges 'slowly')"]
 
 
@@ -169,7 +178,20 @@ def z_row(data):
                   SIGMA)),
             "rises: %s; peaks higher: %s; falls back: %s (the verdict table below)"
             % ("yes" if rise[2] >= SIGMA else "undecided", "yes" if above else
-               "undecided", slope.get("verdict", "-"))]
+               "undecided", fall_back_verdict(slope, end))]
+
+
+def fall_back_verdict(slope, end):
+    """yes where Z falls over the thin shapes or ends below its highest point; otherwise not
+    seen, with the largest fall the data leave open"""
+    if slope.get("verdict") == "falls" or (end or {}).get("verdict") == "lower":
+        return "yes"
+    if end is None:
+        return slope.get("verdict", "-")
+    return ("not seen up to a/c %g: the slope over a/c >= 4 is %s, and a fall from the highest "
+            "point larger than %.2f is excluded at %g sigma"
+            % (end["shapes"][0][0] * end["shapes"][0][1], slope.get("verdict", "-"),
+               end["largest_fall"], SIGMA))
 
 
 def fabric_row(data):
@@ -269,13 +291,13 @@ def histograms_delta_r_row(data):
 
 def law_row(data):
     cells = []
-    for law in sorted({k[1] for k in data.sels if k[0] == 0.0}):
+    laws, diag = shared_diagonal(data)
+    for law in laws:
         p = data.sels[(0.0, law)].quantity("phi")
         z = data.sels[(0.0, law)].quantity("Z")
-        diag = sorted(s for s in p.values if s[0] == s[1])
         top = max(diag, key=p.mean)
         zs = [z.mean(s) for s in diag]
-        cells.append("%s: phi %s (spheres), %s %s, %s %s; Z %.1f-%.1f on the diagonal"
+        cells.append("%s: phi %s (spheres), %s %s, %s %s; Z %.1f-%.1f on the shared diagonal"
                      % (law, pm(p.mean(diag[0]), p.se(diag[0]), 4), pm(p.mean(top), p.se(top), 4),
                         shape(top), pm(p.mean(diag[-1]), p.se(diag[-1]), 4), shape(diag[-1]),
                         min(zs), max(zs)))
