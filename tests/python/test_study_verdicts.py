@@ -311,6 +311,9 @@ def test_force_figure_from_the_deposits_files(tmp_path):
         dict({"eta": v, "zeta": v, "a/c": v * v, "seeds": 2},
              **{q: {"mean": 0.1 * v, "se": e} for q in study_forces.MEASURES})
         for v in (1.0, 1.4, 2.0)]}
-    path = plot_forces.figure({"forces": {"diagonal": forces}}, deposits, str(tmp_path / "f.png"), "test")
+    prolate = dict(forces, per_shape=[dict(r, zeta=1.0, **{"a/c": r["eta"]})
+                                      for r in forces["per_shape"]])
+    path = plot_forces.figure({"forces": {"diagonal": forces, "prolate": prolate}}, deposits,
+                              str(tmp_path / "f.png"), "test")
     assert os.path.getsize(path) > 10000
     assert plot_forces.figure({}, deposits, str(tmp_path / "g.png"), "test") is None
