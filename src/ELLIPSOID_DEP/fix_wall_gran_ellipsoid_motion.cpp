@@ -143,7 +143,7 @@ void FixWallGranEllipsoid::measure_servo_force()
 
 /* ----------------------------------------------------------------------
    restart: a moving wall's state (the wiggle's time origin, the servo's position, speed and
-   last force), for the same fix given again after read_restart
+   measured force, filtered or not), for the same fix given again after read_restart
 ------------------------------------------------------------------------- */
 
 void FixWallGranEllipsoid::write_restart(FILE *fp)
