@@ -82,7 +82,8 @@ int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
   if (!(motion.vmax > 0.0))
     error->all(FLERR, iarg + 6, "Fix wall/gran/ellipsoid servo: vmax must be > 0");
   if (iarg + 7 >= narg || std::string(arg[iarg + 7]) != "filter") return 7;
-  if (iarg + 8 >= narg) utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid servo filter", error);
+  if (iarg + 8 >= narg)
+    utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid servo filter", error);
   motion.filter_time = utils::numeric(FLERR, arg[iarg + 8], false, lmp);
   if (!(motion.filter_time >= 0.0))
     error->all(FLERR, iarg + 8, "Fix wall/gran/ellipsoid servo: filter time must be >= 0");

@@ -96,7 +96,7 @@ def test_servo_restart_continues_exactly(tmp_path, servo):
 # The step-frequency bound (doc/fix_wall_gran_ellipsoid.rst, "Servo wall"). A light sphere,
 # hard damped, between the floor and the lid, both with the law F = kn xi^(3/2) + K xi^(1/2)
 # dxi/dt: at the target each contact has c = K xi^(1/2) and k = 3/2 kn xi^(1/2), and the
-# sphere's damping number 2 c dt / m is 1 (its own integration is stable: below 4 with two
+# sphere's damping number 2 c dt / m is 1 (its own integration is stable: below 2 with both
 # contacts). The force's response to the lid's velocity at the time step's frequency is
 # H = (c + k dt/2) (1 - (c dt/2 + k dt^2/4)/m) / (1 - (2 c dt/2 + 2 k dt^2/4)/m), the floor's
 # contact in the first bracket (velocity Verlet at z = -1), here 1.51 c: the loop chatters
@@ -121,7 +121,8 @@ def stiff_lid_forces(gain, extra="", steps=30000):
                                               RADIUS))
     lmp.commands_string(f"""
         fix floor all wall/gran/ellipsoid {law} zplane 0.0 NULL
-        fix lid all wall/gran/ellipsoid {law} zplane NULL {2 * RADIUS} servo force {TARGET} gain {gain} vmax 0.5 {extra}
+        fix lid all wall/gran/ellipsoid {law} zplane NULL {2 * RADIUS} &
+            servo force {TARGET} gain {gain} vmax 0.5 {extra}
         fix i all nve/ellipsoid
         timestep {STIFF_DT}
         variable f equal f_lid[3]
