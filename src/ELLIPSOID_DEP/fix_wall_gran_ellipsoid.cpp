@@ -218,13 +218,11 @@ void FixWallGranEllipsoid::wall_forces()
       if (peratom_flag) record_contact(i, result, g);
     }
   }
-  // the servo's measure for the next step: the particles' push on its wall, along -n
   if (motion.kind == Motion::Kind::Servo) {
     MPI_Allreduce(wall_force.data(), wall_force_all.data(), static_cast<int>(wall_force.size()),
                   MPI_DOUBLE, MPI_SUM, world);
     force_flag = 1;
-    motion.force = -Vec3(wall_force_all[0], wall_force_all[1], wall_force_all[2])
-                        .dot(walls[0].normal);
+    measure_servo_force();
   }
 }
 

@@ -73,7 +73,9 @@ class FixWallGranEllipsoid : public Fix {
   // wall normal to dim is at rest_offset + A (1 - cos(omega t)) along its normal's dim
   // component, t from the step the fix was defined at
   // servo: the one wall moves along its normal n at u = G (F_target - F), |u| <= vmax, F the
-  // normal force the particles exerted on it at the previous step
+  // normal force the particles exerted on it at the previous step, or that force low-pass
+  // filtered with the time constant filter_time (> 0: the loop then stays away from the time
+  // step's frequency, where the contacts' inertia and damping make it chatter)
   struct Motion {
     enum class Kind { None, Wiggle, Shear, Servo } kind = Kind::None;
     int dim = -1;
@@ -81,7 +83,9 @@ class FixWallGranEllipsoid : public Fix {
     bigint time_origin = 0;
     bool stress = false;          // servo target: a stress (times the box's cross-section)
     double target = 0.0, gain = 0.0, vmax = 0.0;
-    double force = 0.0;           // servo: the particles' push on the wall, last step
+    double force = 0.0;           // servo: its measure of the particles' push on the wall
+    double filter_time = 0.0;     // servo: the measure's low-pass time constant (0: none)
+    bool measured = false;        // servo: force holds a measure (a run or the restart set it)
     double speed = 0.0;           // servo: u of this step
   } motion;
   std::vector<double> rest_offset;     // the walls' offsets when the wiggle's phase is 0
@@ -92,6 +96,7 @@ class FixWallGranEllipsoid : public Fix {
   int parse_motion(int iarg, int narg, char **arg);
   int parse_servo(int iarg, int narg, char **arg);
   void move_walls();
+  void measure_servo_force();
   // the contacts keyword: fix wall/gran's per-atom array of 8 columns
   static constexpr int CONTACT_COLUMNS = 8;
   void record_contact(int i, const EllipsoidDep::ContactForce &result,

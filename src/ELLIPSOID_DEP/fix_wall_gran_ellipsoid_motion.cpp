@@ -52,7 +52,7 @@ int FixWallGranEllipsoid::parse_motion(int iarg, int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   servo force|stress target gain G vmax V: the words used
+   servo force|stress target gain G vmax V [filter T]: the words used
 ------------------------------------------------------------------------- */
 
 int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
@@ -81,7 +81,13 @@ int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
     error->all(FLERR, iarg + 4, "Fix wall/gran/ellipsoid servo: gain must be > 0");
   if (!(motion.vmax > 0.0))
     error->all(FLERR, iarg + 6, "Fix wall/gran/ellipsoid servo: vmax must be > 0");
-  return 7;
+  if (iarg + 7 >= narg || std::string(arg[iarg + 7]) != "filter") return 7;
+  if (iarg + 8 >= narg)
+    utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid servo filter", error);
+  motion.filter_time = utils::numeric(FLERR, arg[iarg + 8], false, lmp);
+  if (!(motion.filter_time >= 0.0))
+    error->all(FLERR, iarg + 8, "Fix wall/gran/ellipsoid servo: filter time must be >= 0");
+  return 9;
 }
 
 // the servo's target force: a stress acts on the box's cross-section normal to the wall
@@ -118,9 +124,27 @@ void FixWallGranEllipsoid::move_walls()
   wall_velocity[motion.dim] = motion.amplitude * motion.omega * std::sin(phase);
 }
 
+// the servo's measure for the next step: the particles' push on its wall, along -n. With a
+// filter a time step moves the measure towards it by 1 - exp(-dt / filter_time); setup
+// forces only start a measure (a new fix), as they leave the contacts' histories alone.
+void FixWallGranEllipsoid::measure_servo_force()
+{
+  const double push =
+      -Vec3(wall_force_all[0], wall_force_all[1], wall_force_all[2]).dot(walls[0].normal);
+  if (motion.filter_time > 0.0 && motion.measured) {
+    if (history_update) {
+      const double keep = std::exp(-update->dt / motion.filter_time);
+      motion.force = keep * motion.force + (1.0 - keep) * push;
+    }
+  } else {
+    motion.force = push;
+  }
+  motion.measured = true;
+}
+
 /* ----------------------------------------------------------------------
    restart: a moving wall's state (the wiggle's time origin, the servo's position, speed and
-   last force), for the same fix given again after read_restart
+   measured force, filtered or not), for the same fix given again after read_restart
 ------------------------------------------------------------------------- */
 
 void FixWallGranEllipsoid::write_restart(FILE *fp)
@@ -148,6 +172,7 @@ void FixWallGranEllipsoid::restart(char *buf)
   motion.time_origin = static_cast<bigint>(list[2]);
   motion.speed = list[3];
   motion.force = list[4];
+  motion.measured = true;
   for (std::size_t k = 0; k < walls.size(); k++) walls[k].offset = list[5 + k];
   if (motion.kind == Motion::Kind::Servo) wall_velocity = motion.speed * walls[0].normal;
 }

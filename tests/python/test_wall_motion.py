@@ -122,6 +122,7 @@ def test_shearing_floor_drags_a_resting_sphere(vshear):
     ("zplane NULL 1.3 servo force 1 vmax 0.1 gain 1", "expected 'servo force VALUE gain G vmax V'"),
     ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 1 wiggle z 0.1 1", "one of wiggle, shear and servo"),
     ("zplane 0 1.3 servo force 1 gain 0.1 vmax 1", "servo moves one wall"),
+    ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 1 filter -1", "filter time must be >= 0"),
 ])
 def test_bad_motion_is_refused(args, pattern):
     lmp = new_lammps()

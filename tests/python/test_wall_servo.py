@@ -1,13 +1,15 @@
 """The servo wall of fix wall/gran/ellipsoid: `servo force|stress TARGET gain G vmax V` moves
 its one wall along its normal at u = G (F_target - F), |u| <= vmax, F the particles' push on
-it at the previous step.
+it at the previous step, or with `filter T` that push low-pass filtered over the time T.
 
 A sphere on a floor under a servo lid (no gravity): the lid comes down at vmax, then settles
 where the Hertz contact carries the target, to 1e-6 of the target, with an overshoot of the
 force below 5 % (the controller is first order: the lid has no inertia, the sphere little
 against the contact's stiffness at this gain); the lid's height then equals the analytic one,
 2 r - 2 xi with F = 4/3 E* sqrt(R*) xi^1.5 at each of the two contacts. With `stress` the
-target is the stress times the box's cross-section. A restart continues the servo exactly.
+target is the stress times the box's cross-section. A restart continues the servo exactly,
+with or without the filter of its measure. The loop's bound at the time step's frequency (it
+includes the contacts' stiffness and the particle's inertia) and the filter: below.
 Bad servo words: test_wall_motion.py.
 """
 import math
@@ -64,8 +66,9 @@ def test_servo_lid_reaches_the_target(kind, target):
     assert z_sphere == pytest.approx(RADIUS - xi, rel=1e-6)
 
 
-def test_servo_restart_continues_exactly(tmp_path):
-    servo = "servo force 2.0 gain 0.05 vmax 0.5"
+@pytest.mark.parametrize("servo", ["servo force 2.0 gain 0.05 vmax 0.5",
+                                   "servo force 2.0 gain 0.05 vmax 0.5 filter 1e-3"])
+def test_servo_restart_continues_exactly(tmp_path, servo):
     lmp = sphere_under_lid(servo)
     lmp.command("run 6000 post no")
     lmp.command(f"write_restart {tmp_path}/servo.restart")
@@ -88,3 +91,72 @@ def test_servo_restart_continues_exactly(tmp_path):
     assert straight[1] > 0.5 * 2.0    # in contact, the servo acting
     assert continued[0] == pytest.approx(straight[0], rel=1e-12)
     assert continued[1] == pytest.approx(straight[1], rel=1e-9)
+
+
+# The step-frequency bound (doc/fix_wall_gran_ellipsoid.rst, "Servo wall"). A light sphere,
+# hard damped, between the floor and the lid, both with the law F = kn xi^(3/2) + K xi^(1/2)
+# dxi/dt: at the target each contact has c = K xi^(1/2) and k = 3/2 kn xi^(1/2), and the
+# sphere's damping number 2 c dt / m is 1 (its own integration is stable: below 2 with both
+# contacts). The force's response to the lid's velocity at the time step's frequency is
+# H = (c + k dt/2) (1 - (c dt/2 + k dt^2/4)/m) / (1 - (2 c dt/2 + 2 k dt^2/4)/m), the floor's
+# contact in the first bracket (velocity Verlet at z = -1), here 1.51 c: the loop chatters
+# above G H = 1. G H = 0.9 and 1.1 fall on either side; G c = 0.8 keeps the old bound G c < 1
+# and chatters; the filter (time constant 5 dt: the gain at the step frequency times
+# (1 - e^-1/5) / (1 + e^-1/5) = 0.1) holds that gain steady.
+STIFF_KN, STIFF_K, STIFF_DT = 1.0e7, 4.5e5, 1.0e-4
+
+
+def stiff_contact():
+    xi = (TARGET / STIFF_KN)**(2 / 3)
+    c, k, m = STIFF_K * math.sqrt(xi), 1.5 * STIFF_KN * math.sqrt(xi), math.pi / 6
+    floor = 1 - (c * STIFF_DT / 2 + k * STIFF_DT**2 / 4) / m
+    both = 1 - (c * STIFF_DT + k * STIFF_DT**2 / 2) / m
+    return c, (c + k * STIFF_DT / 2) * floor / both
+
+
+def stiff_lid_forces(gain, extra="", steps=30000):
+    law = f"hertz {STIFF_KN} {STIFF_K}"
+    lmp = new_lammps()
+    lmp.commands_string(scenes.spheres_in_box("ellipsoid", (2, 2, 3), [(1.0, 1.0, RADIUS)],
+                                              RADIUS))
+    lmp.commands_string(f"""
+        fix floor all wall/gran/ellipsoid {law} zplane 0.0 NULL
+        fix lid all wall/gran/ellipsoid {law} zplane NULL {2 * RADIUS} &
+            servo force {TARGET} gain {gain} vmax 0.5 {extra}
+        fix i all nve/ellipsoid
+        timestep {STIFF_DT}
+        variable f equal f_lid[3]
+        """)
+    lmp.command("fix trace all vector 1 v_f")
+    lmp.command(f"run {steps} post no")
+    forces = np.array([lmp.extract_fix("trace", 0, 1, i) for i in range(steps)])
+    lmp.close()
+    return forces
+
+
+def alternation(forces):
+    """the amplitude of the forces' alternation from step to step over the last 200 steps"""
+    tail = forces[-200:]
+    return np.abs(tail[2:] - 2 * tail[1:-1] + tail[:-2]).max() / 4
+
+
+def test_servo_step_frequency_bound_includes_stiffness_and_inertia():
+    c, h = stiff_contact()
+    assert h / c == pytest.approx(1.51, abs=0.01)
+    below = stiff_lid_forces(0.9 / h)
+    above = stiff_lid_forces(1.1 / h)
+    old_bound = stiff_lid_forces(0.8 / c)
+    assert below[-1] == pytest.approx(TARGET, rel=1e-6)
+    assert below.max() < 1.05 * TARGET
+    assert alternation(below) < 1e-6 * TARGET
+    # 1.1 / H: G c = 0.73, within the old bound, and the lid chatters
+    assert alternation(above) > 0.5 * TARGET
+    assert alternation(old_bound) > 0.5 * TARGET
+
+
+def test_servo_filter_holds_the_gain_of_the_old_bound():
+    c, _ = stiff_contact()
+    forces = stiff_lid_forces(0.8 / c, f"filter {5 * STIFF_DT}")
+    assert forces[-1] == pytest.approx(TARGET, rel=1e-6)
+    assert forces.max() < 1.05 * TARGET
+    assert alternation(forces) < 1e-6 * TARGET
