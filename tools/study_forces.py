@@ -55,9 +55,10 @@ def trend(pooled, shapes):
         **decide(slope / se, seeds_needed(slope, [(se, fewest)]), seeds, "grows with a/c",
                  "falls with a/c", dof))}
     out["thinnest_minus_roundest"] = difference(pooled, shapes[-1], shapes[0], seeds)
-    # a trend that saturates: the thinnest shape against the largest value before it
-    top = max(shapes[:-1], key=pooled.mean)
-    if pooled.mean(top) > pooled.mean(shapes[-1]):
+    # a trend that saturates: the thinnest shape against the largest value between it and the
+    # roundest (the roundest itself is the row before)
+    top = max(shapes[1:-1], key=pooled.mean, default=None)
+    if top is not None and pooled.mean(top) > pooled.mean(shapes[-1]):
         out["thinnest_minus_largest"] = difference(pooled, shapes[-1], top, seeds)
     return out
 
