@@ -89,9 +89,10 @@ def figure(claims, deposits, path, tag):
                       % sum(f["deposits"] for f in lines.values()), fontsize=9)
     axes[0].axhline(0, color="gray", lw=0.5)
     axes[0].legend(fontsize=8)
+    colors = dict(zip(sorted(per_shape), plt.cm.viridis(np.linspace(0, 0.95, len(per_shape)))))
     for s, (theta, m, err) in sorted(mean_and_error(per_shape, "direction").items()):
         axes[1].errorbar(theta, m, yerr=np.nan_to_num(err), fmt="o-", ms=3, capsize=2,
-                         label="eta = zeta = %g (%d)" % (s[0], len(per_shape[s]["direction"][1])))
+                         color=colors[s], label="eta = zeta = %g (%d)" % (s[0], len(per_shape[s]["direction"][1])))
     axes[1].axhline(1, color="gray", ls=":", lw=1)
     axes[1].set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
                        ["0", "pi/4", "pi/2", "3pi/4", "pi"])
@@ -102,13 +103,14 @@ def figure(claims, deposits, path, tag):
     for s, (f, p, err) in sorted(mean_and_error(per_shape, "magnitude").items()):
         keep = p > 0
         axes[2].errorbar(f[keep], p[keep], yerr=np.nan_to_num(err[keep]), fmt="o-", ms=3,
-                         capsize=2, label="eta = zeta = %g" % s[0])
+                         color=colors[s], capsize=2, label="eta = zeta = %g" % s[0])
     axes[2].set_yscale("log")
     axes[2].set_xlabel("f / <f>")
     axes[2].set_ylabel("P(f / <f>)")
     axes[2].set_title("(c) normal-force distribution", fontsize=9)
     axes[2].legend(fontsize=7)
-    fig.suptitle("contact forces along eta = zeta, %s; error bars: pooled seed SD / sqrt(seeds)"
+    fig.suptitle("contact forces along eta = zeta (a: and the spheroid lines), %s; error bars: "
+                 "pooled seed SD / sqrt(seeds)"
                  % tag, fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
