@@ -95,6 +95,8 @@ def compare(s, d):
            "step_cost_ratio": s["us_per_particle_step"] / d["us_per_particle_step"],
            "steps_ratio": s["steps"] / d["steps"]}
     limit = 2 * math.sqrt(1 / s["n"] + 1 / d["n"])
+    if s["n"] < 2 or d["n"] < 2:    # no seed spread to compare with
+        limit = float("nan")
     for key in ("phi", "Z"):
         sd = pooled_sd(s[key + "s"], d[key + "s"])
         res["d_" + key] = (s[key] - d[key]) / sd if sd > 0 else float("nan")
@@ -111,7 +113,8 @@ def compare(s, d):
 
 
 def fmt_row(name, s, c):
-    agree = "yes" if c["agree"] else "no (%s)" % ", ".join(
+    agree = "yes" if c["agree"] else "n/a (< 2 seeds)" if math.isnan(c["limit_pooled_sd"]) \
+        else "no (%s)" % ", ".join(
         m for m in ("phi", "Z", "hist") if not c["agree_" + m])
     return ("| %s | %s | %d | %.0f | %.2f | %.0f | %.3f | %.2f | %.4f +- %.4f | %+.2f | "
             "%.3f +- %.3f | %+.2f | %.4f | %.2f | %.3f | %.3f | %d | %s |"
