@@ -2,6 +2,8 @@
 (CPU time, steps to rest, CPU time per particle-step, each also as a ratio to the default) and
 what it computes (phi, Z, the contact-normal histogram) against the default.
 
+* Cost: the medians over the seeds; per particle-step also the median over the seeds of the
+  ratio to the default's run of the same seed (the two ran one after the other).
 * phi and Z: the difference of the setting's seed mean from the default's in units of the
   pooled seed SD, sqrt(((n_s - 1) SD_s^2 + (n_d - 1) SD_d^2) / (n_s + n_d - 2)). Within the
   seed spread when that is at most 2 sqrt(1/n_s + 1/n_d), i.e. two standard errors of the
@@ -80,6 +82,8 @@ def stats(rows):
             "steps": float(np.median(f("steps"))),
             "us_per_particle_step": float(np.median(
                 1e6 * f("cpu_seconds") / (n_particles * f("steps")))),
+            "step_cost_by_seed": dict(zip((r["seed"] for r in rows),
+                                          1e6 * f("cpu_seconds") / (n_particles * f("steps")))),
             "phis": f("phi"), "phi": float(f("phi").mean()), "phi_sd": sd(f("phi")),
             "Zs": f("Z"), "Z": float(f("Z").mean()), "Z_sd": sd(f("Z")),
             "F": histograms(rows), "all_at_rest": int(f("at_rest").min()),
@@ -91,8 +95,13 @@ def stats(rows):
 
 def compare(s, d):
     """the setting s against the default d (both from stats())"""
+    # per step: the ratio to the default's run of the same seed, which ran just before it
+    # (a drift of the machine's load reaches both alike), the median over the seeds
+    seeds = [k for k in s["step_cost_by_seed"] if k in d["step_cost_by_seed"]]
     res = {"cpu_ratio": s["cpu"] / d["cpu"],
-           "step_cost_ratio": s["us_per_particle_step"] / d["us_per_particle_step"],
+           "step_cost_ratio": float(np.median([s["step_cost_by_seed"][k] /
+                                               d["step_cost_by_seed"][k] for k in seeds]))
+           if seeds else float("nan"),
            "steps_ratio": s["steps"] / d["steps"]}
     limit = 2 * math.sqrt(1 / s["n"] + 1 / d["n"])
     if s["n"] < 2 or d["n"] < 2:    # no seed spread to compare with
@@ -127,6 +136,7 @@ def fmt_row(name, s, c):
 
 HEADER = ["| setting | pair_style keywords | seeds | CPU time (s, median) | CPU / default "
           "| steps to rest (median) | CPU us per particle-step (median) | per step / default "
+          "(same seed, median) "
           "| phi (mean +- SD) | d phi (pooled SD) | Z (mean +- SD) | d Z (pooled SD) "
           "| histogram L1 to default mean (median) | L1 / default's own | iterations per "
           "contact | corrections per contact | not converged | within the seed spread |",

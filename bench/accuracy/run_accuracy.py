@@ -73,7 +73,7 @@ def read_log(path):
         for line in f:
             if line.startswith(COUNTERS_LINE):
                 counters = json.loads(line[len(COUNTERS_LINE):])
-            elif "WARNING" in line:
+            elif line.startswith("WARNING"):    # not the input's echoed lines
                 warnings += 1
     if counters is None:
         raise ValueError("no '%s' line in %s" % (COUNTERS_LINE.strip(), path))

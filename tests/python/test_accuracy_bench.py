@@ -76,6 +76,8 @@ def test_comparisons_of_made_up_settings(made_up_rows):
     assert d["iterations_per_contact"] == pytest.approx(1.5)
     cheap = accuracy_table.compare(g["cheap"], d)
     assert cheap["cpu_ratio"] == pytest.approx(60 / 110)
+    # per step against the default's run of the same seed: 0.6, 0.516, 0.548
+    assert cheap["step_cost_ratio"] == pytest.approx((70 / 33000) / (120 / 31000))
     assert cheap["d_phi"] == pytest.approx(0.0, abs=1e-9) and cheap["agree"]
     denser = accuracy_table.compare(g["denser"], d)
     assert denser["d_phi"] == pytest.approx(0.02 / 0.002)    # pooled SD 0.002
