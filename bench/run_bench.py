@@ -6,6 +6,9 @@
   ./ellipsoid-dep bench kernel     the kernel micro-benchmarks (build/bench/bench_kernel)
   ./ellipsoid-dep bench clumps     multi-sphere clumps against the ellipsoids, whole deposits
                                    (bench/clumps/run_clumps.py; hours on 2 shared cores)
+  ./ellipsoid-dep bench accuracy   the contact knobs' cost against phi, Z and the contact
+                                   normals of whole default deposits (bench/accuracy/
+                                   run_accuracy.py; hours on 2 shared cores)
 
 Needs the environment set by ./ellipsoid-dep (LAMMPS_BUILD, LAMMPS_PLUGIN_PATH).  Every number
 comes from this one invocation; timings are medians over interleaved repeats.  Output (logs,
@@ -603,8 +606,10 @@ def run_kernel():
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "kernel":
         run_kernel()
-    if len(sys.argv) > 1 and sys.argv[1] == "clumps":
-        script = os.path.join(ROOT, "bench", "clumps", "run_clumps.py")
+    whole_deposits = {"clumps": os.path.join("clumps", "run_clumps.py"),
+                      "accuracy": os.path.join("accuracy", "run_accuracy.py")}
+    if len(sys.argv) > 1 and sys.argv[1] in whole_deposits:
+        script = os.path.join(ROOT, "bench", whole_deposits[sys.argv[1]])
         os.execv(sys.executable, [sys.executable, script] + sys.argv[2:])
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
