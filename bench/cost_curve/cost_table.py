@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""The cost curve of the default deposit against N (issue 32, item 3): from the rows of
+bench/accuracy/run_accuracy.py's default setting (rows.csv of one or more run folders, each run's
+LAMMPS log beside it) the table per (N, ranks) of the CPU time to deposit, the steps to rest,
+the CPU time per particle-step, LAMMPS's memory estimate per rank and per particle and the
+communication's share of the loop time; the fitted exponents of the CPU time to deposit and of
+the time per particle-step in N, and a log-log plot.
+
+    cost_table.py RUNS_DIR [RUNS_DIR ...] --results DIR
+
+The box's edge grows as sqrt(N) (in.deposit), so the deposit's height, and with it the fall and
+the steps to rest, do not depend on N: a cost linear in N has the exponent 1.
+"""
+import argparse
+import math
+import os
+import re
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "accuracy"))
+import accuracy_table  # noqa: E402
+
+MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
+LOOP = re.compile(r"^Loop time of (\S+) on")
+COMM = re.compile(r"^Comm\s+\|\s*\S+\s*\|\s*(\S+)\s*\|")
+
+
+def read_log(path):
+    """(the largest memory estimate per rank in MB, the communication's share of the summed
+    loop time) of a LAMMPS log"""
+    memory, loop, comm = 0.0, 0.0, 0.0
+    with open(path) as f:
+        for line in f:
+            for pattern, kind in ((MEMORY, "memory"), (LOOP, "loop"), (COMM, "comm")):
+                m = pattern.match(line)
+                if m:
+                    value = float(m.group(1))
+                    if kind == "memory":
+                        memory = max(memory, value)
+                    elif kind == "loop":
+                        loop += value
+                    else:
+                        comm += value
+    return memory, comm / loop if loop > 0 else math.nan
+
+
+def load(run_dirs):
+    """the default setting's rows of the run folders, each with its log's memory and comm"""
+    rows = []
+    for folder in run_dirs:
+        for r in accuracy_table.read_rows(os.path.join(folder, "rows.csv")):
+            if r["setting"] != "default":
+                continue
+            log = os.path.join(folder, "default-N%d-s%d" % (int(r["N"]), int(r["seed"])),
+                               "log.lammps")
+            if not os.path.exists(log):
+                continue
+            r["memory_mb"], r["comm_share"] = read_log(log)
+            rows.append(r)
+    return rows
+
+
+def per_size(rows):
+    """{(N, ranks): medians over seeds}"""
+    groups = {}
+    for r in rows:
+        groups.setdefault((int(r["N"]), int(r["np"])), []).append(r)
+    out = {}
+    for (n, ranks), g in sorted(groups.items()):
+        cpu = np.array([float(r["cpu_seconds"]) for r in g])
+        steps = np.array([float(r["steps"]) for r in g])
+        out[(n, ranks)] = {
+            "seeds": len(g), "cpu_seconds": float(np.median(cpu)),
+            "steps": float(np.median(steps)),
+            "us_per_particle_step": float(np.median(1e6 * cpu / (n * steps))),
+            "memory_mb_per_rank": max(r["memory_mb"] for r in g),
+            "kb_per_particle": 1024 * max(r["memory_mb"] for r in g) * ranks / n,
+            "comm_share": float(np.median([r["comm_share"] for r in g]))}
+    return out
+
+
+def exponent(sizes, key):
+    """the least-squares slope of log(key) against log(N) over the sizes of one rank count"""
+    n = np.array([s[0] for s in sizes])
+    y = np.array([sizes[s][key] for s in sizes])
+    if len(n) < 2:
+        return None
+    return float(np.polyfit(np.log(n), np.log(y), 1)[0])
+
+
+def write(rows, results):
+    sizes = per_size(rows)
+    one_rank = {s: v for s, v in sizes.items() if s[1] == 1}
+    lines = ["| N | ranks | seeds | CPU to deposit (s) | steps to rest | us per particle-step | "
+             "memory per rank (MB, LAMMPS's estimate) | kB per particle | comm share |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for (n, ranks), v in sizes.items():
+        lines.append("| %d | %d | %d | %.0f | %.0f | %.2f | %.1f | %.2f | %.3f |"
+                     % (n, ranks, v["seeds"], v["cpu_seconds"], v["steps"],
+                        v["us_per_particle_step"], v["memory_mb_per_rank"],
+                        v["kb_per_particle"], v["comm_share"]))
+    fits = {k: exponent(one_rank, k) for k in ("cpu_seconds", "us_per_particle_step", "steps")}
+    lines.append("")
+    lines.append("Exponents in N at 1 rank (log-log least squares over %d sizes): CPU to deposit "
+                 "%s, time per particle-step %s, steps to rest %s."
+                 % (len(one_rank), *("%.3f" % fits[k] if fits[k] is not None else "-"
+                                     for k in ("cpu_seconds", "us_per_particle_step", "steps"))))
+    os.makedirs(results, exist_ok=True)
+    with open(os.path.join(results, "table.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    plot(sizes, os.path.join(results, "cost_curve.png"))
+    return sizes, fits
+
+
+def plot(sizes, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ranks in sorted({s[1] for s in sizes}):
+        pts = sorted(s for s in sizes if s[1] == ranks)
+        n = [s[0] for s in pts]
+        axes[0].loglog(n, [sizes[s]["cpu_seconds"] for s in pts], "o-",
+                       label="%d rank%s" % (ranks, "s" if ranks > 1 else ""))
+        axes[1].semilogx(n, [sizes[s]["us_per_particle_step"] for s in pts], "o-")
+    n = np.array(sorted({s[0] for s in sizes}), float)
+    first = sizes[min(sizes)]
+    axes[0].loglog(n, first["cpu_seconds"] * n / n[0], "k:", label="linear in N")
+    axes[0].set_xlabel("N")
+    axes[0].set_ylabel("CPU time to deposit (s)")
+    axes[0].legend(fontsize=8)
+    axes[1].set_xlabel("N")
+    axes[1].set_ylabel("CPU per particle-step (us)")
+    axes[1].set_ylim(bottom=0)
+    fig.suptitle("the default deposit (eta 1.4, zeta 1.8, delta_r 0.6) against N; medians over "
+                 "seeds", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+", help="run folders of run_accuracy.py (rows.csv, logs)")
+    ap.add_argument("--results", required=True)
+    args = ap.parse_args(argv)
+    rows = load(args.runs)
+    if not rows:
+        sys.exit("cost_table: no default-setting rows with their logs in %s" % args.runs)
+    sizes, fits = write(rows, args.results)
+    print(open(os.path.join(args.results, "table.md")).read())
+
+
+if __name__ == "__main__":
+    main()
