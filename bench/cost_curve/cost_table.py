@@ -91,6 +91,26 @@ def exponent(sizes, key):
     return float(np.polyfit(np.log(n), np.log(y), 1)[0])
 
 
+def extrapolation(sizes, n=10 ** 6):
+    """a deposit of n particles from the largest measured N at 1 rank: its time per
+    particle-step and steps to rest (the height does not change), perfect division over the
+    cores; its memory from the memory per particle"""
+    largest = max((s for s in sizes if s[1] == 1), default=None)
+    if largest is None:
+        return ""
+    v = sizes[largest]
+    cpu_hours = v["us_per_particle_step"] * 1e-6 * n * v["steps"] / 3600
+    return ("A deposit of %.0e particles from N = %d's %.2f us per particle-step and %.0f steps: "
+            "%.0f CPU-hours, %.1f hours on 2 cores and %.1f minutes on 64 at perfect division "
+            "(an upper bound on the speed: the communication's share at 1 rank was %.3f, the "
+            "exchange of ghosts across the periodic images; on p ranks each rank's subdomain "
+            "shrinks as 1/sqrt(p) in x and y, so its ghost shell's share grows as sqrt(p)); "
+            "LAMMPS's memory estimate %.1f GB in all (%.1f kB per particle)."
+            % (n, largest[0], v["us_per_particle_step"], v["steps"], cpu_hours, cpu_hours / 2,
+               60 * cpu_hours / 64, v["comm_share"], v["kb_per_particle"] * n / 1024 ** 2,
+               v["kb_per_particle"]))
+
+
 def write(rows, results):
     sizes = per_size(rows)
     one_rank = {s: v for s, v in sizes.items() if s[1] == 1}
@@ -108,6 +128,8 @@ def write(rows, results):
                  "%s, time per particle-step %s, steps to rest %s."
                  % (len(one_rank), *("%.3f" % fits[k] if fits[k] is not None else "-"
                                      for k in ("cpu_seconds", "us_per_particle_step", "steps"))))
+    lines.append("")
+    lines.append(extrapolation(sizes))
     os.makedirs(results, exist_ok=True)
     with open(os.path.join(results, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
