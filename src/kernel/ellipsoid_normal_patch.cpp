@@ -20,36 +20,16 @@ double NormalPatch::value(double phi, double psi) const
   return support(m, n) + n.dot(d) + rim_radius * std::sin(psi);
 }
 
-void NormalPatch::derivatives(double phi, double psi, Eigen::Vector2d &gradient,
-                              Eigen::Matrix2d &hessian) const
-{
-  const double cf = std::cos(phi), sf = std::sin(phi), cs = std::cos(psi), ss = std::sin(psi);
-  const Vec3 radial = cf * e1 + sf * e2, tangent = -sf * e1 + cf * e2;
-  const Vec3 n = cs * a + ss * radial;
-  // dn/dphi, dn/dpsi and the second derivatives
-  const Vec3 dn[2] = {ss * tangent, -ss * a + cs * radial};
-  const Vec3 ddn[2][2] = {{-ss * radial, cs * tangent}, {cs * tangent, -n}};
-  // the support half-width h(n) = sqrt(n^T M n): gradient M n / h, Hessian M/h - (Mn)(Mn)^T/h^3
-  const Vec3 mn = m * n;
-  const double h = std::sqrt(n.dot(mn));
-  const Vec3 dh_dn = mn / h + d;    // with the linear term
-  for (int i = 0; i < 2; i++) {
-    gradient[i] = dh_dn.dot(dn[i]);
-    for (int j = 0; j < 2; j++)
-      hessian(i, j) = (dn[i].dot(m * dn[j]) - mn.dot(dn[i]) * mn.dot(dn[j]) / (h * h)) / h +
-          dh_dn.dot(ddn[i][j]);
-  }
-  gradient[1] += rim_radius * cs;
-  hessian(1, 1) -= rim_radius * ss;
-}
-
 void NormalArc::derivatives(double phi, double &df, double &ddf) const
 {
-  Eigen::Vector2d gradient;
-  Eigen::Matrix2d hessian;
-  patch.derivatives(phi, 0.5 * PI, gradient, hessian);
-  df = gradient[0];
-  ddf = hessian(0, 0);
+  // n = cos(phi) e1 + sin(phi) e2: n' = t (the tangent), n'' = -n
+  const Vec3 n = patch.normal(phi, 0.5 * PI);
+  const Vec3 t = -std::sin(phi) * patch.e1 + std::cos(phi) * patch.e2;
+  const Vec3 mn = patch.m * n;
+  const double h = std::sqrt(n.dot(mn));
+  const double along = mn.dot(t);
+  df = along / h + t.dot(patch.d);
+  ddf = (t.dot(patch.m * t) - along * along / (h * h)) / h - h - n.dot(patch.d);
 }
 
 double NormalPatch::overlap(const Vec3 &n) const

@@ -45,9 +45,6 @@ struct NormalPatch {
   double value(double phi, double psi) const;
   // the same at a unit direction n of the cone: sqrt(n^T M n) + n.d + r |n - (n.a) a|
   double overlap(const Vec3 &n) const;
-  // the gradient and Hessian in (phi, psi)
-  void derivatives(double phi, double psi, Eigen::Vector2d &gradient,
-                   Eigen::Matrix2d &hessian) const;
 };
 
 // the patch at psi = pi/2 as a function of phi (an edge, a cylinder's side), for
