@@ -97,6 +97,8 @@ void FixWallGranRegionEllipsoid::update_walls()
     } else {
       w.center = place(rest.center);
       w.axis = (place(rest.center + rest.axis) - w.center).normalized();
+      for (int d = 0; d < 3; d++)
+        w.frame.col(d) = (place(rest.center + rest.frame.col(d)) - w.center).normalized();
     }
   }
 }
@@ -135,7 +137,7 @@ bool FixWallGranRegionEllipsoid::reaches_walls(int i) const
 void FixWallGranRegionEllipsoid::check_periodic_crossing()
 {
   for (const WallSurface &w : walls) {
-    if (w.shape == WallShape::Plane) continue;
+    if (w.shape == WallShape::Plane || w.shape == WallShape::Box) continue;
     for (int d = 0; d < 3; d++) {
       if (!domain->periodicity[d]) continue;
       if (w.shape != WallShape::Sphere && std::fabs(w.axis[d]) == 1.0) continue;

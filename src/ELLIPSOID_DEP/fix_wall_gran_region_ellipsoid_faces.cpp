@@ -136,6 +136,11 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
                "Fix wall/gran/region/ellipsoid: no point of a 25^3 grid over the box lies in "
                "region {}'s shape (outside the box, or smaller than the grid's spacing)",
                region_id);
+  if (!inside && region->openflag)
+    error->all(FLERR,
+               "Fix wall/gran/region/ellipsoid: region {} has side out and open faces; a "
+               "region met from outside must be closed",
+               region_id);
   if (shape == "cone" && !inside)
     error->all(FLERR,
                "Fix wall/gran/region/ellipsoid: region {} is a cone with side out; a cone is "
@@ -162,8 +167,8 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
       w.normal.normalize();
       w.offset = w.normal.dot(point);
       if (std::fabs(w.offset) > AT_INFINITY) continue;    // a face at INF
-      // outside a block or a cylinder, a face beyond the box holds nothing in it (its plane
-      // would reach into the box)
+      // outside a block or a cylinder, a face beyond the box is none (the solid runs on
+      // through the box's side, periodic or not)
       if (!inside && shape != "plane" && !within_box(w)) continue;
     } else if (shape == "cone") {
       if (!cone_from_probes(probes, w))
@@ -190,31 +195,35 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
   std::sort(found_faces.begin(), found_faces.end(),
             [](const auto &a, const auto &b) { return a.first < b.first; });
 
-  // outside a shape with edges (two faces meeting inside the box), a particle touches edges
-  // and corners that the face-by-face contact does not hold
-  if (!inside) {
-    int flat_dims = 0, curved = 0;
-    bool dim_seen[3] = {false, false, false};
+  // outside a block or a capped cylinder the particle meets one convex solid: its faces,
+  // edges, corners and rims together (LAMMPS's surface_exterior: one contact)
+  if (!inside && (shape == "block" || shape == "cylinder")) {
+    WallSurface solid;
+    if (shape == "block") {
+      solid.shape = WallShape::Box;
+      solid.center = Vec3::Zero();
+    } else {
+      solid = found_faces.front().second;    // the side (iwall 2 sorts after the caps)
+      for (const auto &face : found_faces)
+        if (face.second.shape == WallShape::Cylinder) solid = face.second;
+    }
     for (const auto &face : found_faces) {
       const WallSurface &w = face.second;
-      if (w.shape != WallShape::Plane) {
-        curved++;
-        continue;
-      }
-      for (int d = 0; d < 3; d++) {
-        if (w.normal[d] == 0.0 || shape == "plane") continue;
-        if (!dim_seen[d]) {
-          dim_seen[d] = true;
-          flat_dims++;
-        }
+      if (w.shape != WallShape::Plane) continue;
+      // a face's plane w.normal.x = w.offset, the normal along one coordinate, out of the
+      // solid
+      int d = 0;
+      while (w.normal[d] == 0.0) d++;
+      const bool upper = w.normal[d] > 0.0;
+      const double at = w.offset / w.normal[d];
+      if (shape == "block") {
+        (upper ? solid.upper : solid.lower)[d] = at;
+      } else {
+        const double along = at - solid.center[d];    // the axis is coordinate d
+        (upper ? solid.cap_hi : solid.cap_lo) = along;
       }
     }
-    if (flat_dims + (curved > 0 ? 1 : 0) > 1)
-      error->all(FLERR,
-                 "Fix wall/gran/region/ellipsoid: region {} side out has faces that meet at "
-                 "edges inside the box; outside a region only a sphere, a plane, a cylinder "
-                 "without caps in the box and a block's faces normal to one axis are supported",
-                 region_id);
+    return {solid};
   }
   std::vector<WallSurface> walls_found;
   for (const auto &face : found_faces) walls_found.push_back(face.second);

@@ -4,16 +4,13 @@
 
 #include "ellipsoid_cone_contact.h"
 
-#include <algorithm>
-#include <vector>
+#include "ellipsoid_interval_search.h"
 
 namespace EllipsoidDep {
 
 namespace {
 
   constexpr int SAMPLES = 64;
-  constexpr int GOLDEN_STEPS = 30;
-  constexpr int NEWTON_STEPS = 20;
 
   // f(phi) = h(w) + w.d over the circle of directions w(phi) = cos e1 + sin e2 - slope u
   struct ConeObjective {
@@ -41,38 +38,16 @@ namespace {
     }
   };
 
-  struct Maximum {
-    double phi, value;
-    bool converged;
-  };
-
-  Maximum refine(const ConeObjective &f, double lo, double hi)
-  {
-    // golden section down to ~1e-7 of the sample spacing, then Newton on f' = 0
-    const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
-    double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-    double f1 = f.value(x1), f2 = f.value(x2);
-    for (int it = 0; it < GOLDEN_STEPS; it++) {
-      if (f1 > f2) {
-        hi = x2, x2 = x1, f2 = f1;
-        x1 = hi - ratio * (hi - lo), f1 = f.value(x1);
-      } else {
-        lo = x1, x1 = x2, f1 = f2;
-        x2 = lo + ratio * (hi - lo), f2 = f.value(x2);
-      }
-    }
-    double phi = 0.5 * (lo + hi);
-    bool converged = false;
-    for (int it = 0; it < NEWTON_STEPS && !converged; it++) {
-      double df, ddf;
+  // the search minimises: the cone's objective negated
+  struct NegatedCone {
+    const ConeObjective &f;
+    double value(double phi) const { return -f.value(phi); }
+    void derivatives(double phi, double &df, double &ddf) const
+    {
       f.derivatives(phi, df, ddf);
-      if (!(ddf < 0.0)) break;    // not at a maximum: the iteration is not trusted
-      const double step = -df / ddf;
-      phi += step;
-      converged = std::fabs(step) <= 1e-12;
+      df = -df, ddf = -ddf;
     }
-    return {phi, f.value(phi), converged};
-  }
+  };
 
 }    // namespace
 
@@ -88,30 +63,18 @@ ContactGeometry ellipsoid_cone_contact(const Ellipsoid &e, const Vec3 &center, c
   const Vec3 e1 = u.unitOrthogonal();
   const ConeObjective f{e.inverse_form, e1, u.cross(e1), u, e.center - center, slope};
 
-  // the discrete maxima of the samples, best first; the best two are refined
-  std::vector<double> samples(SAMPLES);
-  const double spacing = 2.0 * PI / SAMPLES;
-  for (int j = 0; j < SAMPLES; j++) samples[j] = f.value(j * spacing);
-  std::vector<int> peaks;
-  for (int j = 0; j < SAMPLES; j++)
-    if (samples[j] >= samples[(j + SAMPLES - 1) % SAMPLES] &&
-        samples[j] >= samples[(j + 1) % SAMPLES])
-      peaks.push_back(j);
-  std::sort(peaks.begin(), peaks.end(), [&](int a, int b) { return samples[a] > samples[b]; });
-  Maximum best{0.0, -HUGE_VAL, false};
-  for (std::size_t p = 0; p < std::min<std::size_t>(2, peaks.size()); p++) {
-    const double phi = peaks[p] * spacing;
-    const Maximum candidate = refine(f, phi - spacing, phi + spacing);
-    if (candidate.value > best.value) best = candidate;
-  }
+  // the two best discrete maxima of the samples refined
+  const IntervalMinimum best =
+      minimise_on_interval(NegatedCone{f}, 0.0, 2.0 * PI, true, SAMPLES, 2);
+  const double deepest = -best.value;
 
-  const Vec3 w = f.w(best.phi);
+  const Vec3 w = f.w(best.x);
   const double length = w.norm();
   const Vec3 normal = w / length;
   const Vec3 mn = e.inverse_form * normal;
   const Vec3 p = e.center + mn / std::sqrt(normal.dot(mn));    // support point along normal
   g.normal = normal;
-  g.overlap = (best.value - radius) / length;
+  g.overlap = (deepest - radius) / length;
   g.point_a = p;
   g.point_b = p - g.overlap * normal;
   g.point = 0.5 * (g.point_a + g.point_b);

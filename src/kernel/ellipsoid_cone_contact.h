@@ -9,7 +9,8 @@
        f(phi) = h(w) + w.(c - center),   w(phi) = m(phi) - slope axis,
    h(w) = sqrt(w^T M w) the support function, over the angle phi of m: a one-parameter
    maximisation. It is sampled at 64 angles; the two best discrete maxima are refined by
-   golden-section search and finished by Newton's method on f'(phi) = 0 (analytic f', f'');
+   golden-section search and finished by Newton's method on f'(phi) = 0 (analytic f', f'';
+   ellipsoid_interval_search.h, on -f);
    a Newton iteration that does not settle is reported (NotConverged), never dropped.
    The wall's normal is w / |w| at the maximum (outwards and along -slope axis), the deepest
    point the support point along it, overlap = (f - radius) / |w|.

@@ -6,7 +6,8 @@
      ellipsoid_contact.h        contact of two ellipsoids; the shared result types
      ellipsoid_wang.h           Wang et al. separation test, separating planes
      ellipsoid_plane_contact.h  ellipsoid against a flat wall
-     ellipsoid_wall_contact.h   ellipsoid against a wall of any supported shape (dispatch)
+     ellipsoid_wall_contact.h   ellipsoid against a wall of any supported shape (dispatch;
+                                the shapes' own headers, ellipsoid_box_contact.h, ...)
      ellipsoid_pipeline.h       the per-pair pipeline, its settings and counters
      ellipsoid_pair_history.h   the per-pair history layout (PairHistory)
    ellipsoid_gap.h (the gap function and its minimiser) is internal to the contact and Wang
@@ -23,6 +24,8 @@
 #include "ellipsoid_sphere_contact.h"
 #include "ellipsoid_cylinder_contact.h"
 #include "ellipsoid_cone_contact.h"
+#include "ellipsoid_box_contact.h"
+#include "ellipsoid_capped_cylinder_contact.h"
 #include "ellipsoid_shape.h"
 #include "ellipsoid_wall_contact.h"
 #include "ellipsoid_wang.h"

@@ -18,7 +18,8 @@
      region convention (wall_effective_radius, ellipsoid_shape.h).
 
    Degenerate cases: those of the shape's contact (ellipsoid_plane_contact.h,
-   ellipsoid_sphere_contact.h, ellipsoid_cylinder_contact.h, ellipsoid_cone_contact.h).
+   ellipsoid_sphere_contact.h, ellipsoid_cylinder_contact.h, ellipsoid_cone_contact.h,
+   ellipsoid_box_contact.h, ellipsoid_capped_cylinder_contact.h).
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_WALL_CONTACT_H
@@ -32,7 +33,8 @@ enum class WallShape {
   Plane,         // the solid half-space {x : normal.x <= offset}
   Sphere,        // the sphere |x - center| = radius; inside: particles in the ball
   Cylinder,      // the infinite cylinder through center along axis; inside: particles in it
-  Cone           // particles inside rho = radius + slope s about center, axis (s along axis)
+  Cone,          // particles inside rho = radius + slope s about center, axis (s along axis)
+  Box            // the solid box lower <= frame^T (x - center) <= upper; particles outside
 };
 
 struct WallSurface {
@@ -44,6 +46,12 @@ struct WallSurface {
   double radius = 0.0;            // Sphere, Cylinder; Cone: its radius at center
   double slope = 0.0;             // Cone: d rho / d s
   bool inside = true;             // Sphere, Cylinder: the particles' side
+  // Cylinder outside: its caps along axis from center (infinite: none; inside, the caps are
+  // faces of their own)
+  double cap_lo = -INFINITY, cap_hi = INFINITY;
+  // Box: its unit edge directions (columns) and its faces along them (infinite: none)
+  Mat3 frame = Mat3::Identity();
+  Vec3 lower = Vec3::Constant(-INFINITY), upper = Vec3::Constant(INFINITY);
 };
 
 double wall_clearance(const WallSurface &w, const Vec3 &x);

@@ -2,15 +2,19 @@
 // brute-force oracle: the ellipsoid surface parametrised by two angles in long double, the
 // depth beyond the wall's surface sampled densely and refined by a shrinking pattern search.
 // The oracle shares no code with the kernel's secular equation (ellipsoid_point_extremum).
+// The solids met from outside (a block's faces, edges and corners; a capped cylinder's side,
+// caps and rims) against their own brute-force oracle (below).
 
 #include "ellipsoid_kernel.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <random>
+#include <vector>
 
 using namespace EllipsoidDep;
 
@@ -24,15 +28,21 @@ struct RawEllipsoid {
   double c[3], q[4], axes[3];
 };
 
-// the surface point at angles (theta, phi), the rotation built from the quaternion here
-V3L surface_point(const RawEllipsoid &r, LD theta, LD phi)
+// the rotation (body to box) of the quaternion, built here
+std::array<V3L, 3> rotation_rows(const RawEllipsoid &r)
 {
   LD w = r.q[0], x = r.q[1], y = r.q[2], z = r.q[3];
   const LD n = std::sqrt(w * w + x * x + y * y + z * z);
   w /= n, x /= n, y /= n, z /= n;
-  const LD rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                        {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-                        {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+  return {V3L{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+          V3L{2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+          V3L{2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+}
+
+// the surface point at angles (theta, phi)
+V3L surface_point(const RawEllipsoid &r, LD theta, LD phi)
+{
+  const std::array<V3L, 3> rot = rotation_rows(r);
   const LD body[3] = {r.axes[0] * std::sin(theta) * std::cos(phi),
                       r.axes[1] * std::sin(theta) * std::sin(phi), r.axes[2] * std::cos(theta)};
   V3L p;
@@ -275,4 +285,349 @@ TEST(WallShapes, SphereParticleClosedForm)
   const ContactGeometry h = wall_contact(spheroid, ball);
   EXPECT_EQ(h.status, Status::Separated);
   EXPECT_NEAR(h.overlap, 1.0 - 4.0, 1e-15);
+}
+
+// ---------------------------------------------------------------------------------------
+// Solids met from outside (a block, a capped cylinder): the penetration depth is the smallest
+// separating-axis overlap delta(n) = h_B(n) + sqrt(n^T M n) - n.c over unit directions n
+// (from the solid to the particle). The oracle minimises it in long double by brute force on
+// the patches of directions where the solid's support function h_B is one formula: a box's
+// eight octants (h_B = n.corner), a capped cylinder's two hemispheres (h_B = n.cap centre +
+// R |n_perp|), each over a region of two coordinates: a grid, then a pattern search from each
+// of its local minima kept in the region. It shares no code with the kernel's features, cones
+// and searches.
+
+namespace {
+
+// sqrt(n^T M n) from the quaternion's rotation and the semi-axes
+LD half_width(const RawEllipsoid &r, const V3L &n)
+{
+  const std::array<V3L, 3> rot = rotation_rows(r);
+  LD sum = 0;
+  for (int k = 0; k < 3; k++) {
+    const LD along = rot[0][k] * n[0] + rot[1][k] * n[1] + rot[2][k] * n[2];
+    sum += (LD) r.axes[k] * r.axes[k] * along * along;
+  }
+  return std::sqrt(sum);
+}
+
+LD dot3(const V3L &a, const V3L &b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+struct SolidOracle {
+  LD overlap = 1e300L;
+  V3L n{};
+};
+
+// the smallest delta(direction(x, y)) over the region of the plane [x0, x1] x [y0, y1] that
+// `inside` accepts: a 40 x 40 grid, then a pattern search from each of its local minima
+// (over the 8 neighbours), moves that leave the region refused
+void patch_minimum(const std::function<V3L(LD, LD)> &direction,
+                   const std::function<bool(LD, LD)> &inside,
+                   const std::function<LD(const V3L &)> &delta, const std::array<LD, 4> &box,
+                   SolidOracle &best)
+{
+  const int cells = 40;
+  const LD dx = (box[1] - box[0]) / cells, dy = (box[3] - box[2]) / cells;
+  std::vector<LD> values((cells + 1) * (cells + 1), 1e300L);
+  auto at = [&](int i, int j) -> LD & { return values[i * (cells + 1) + j]; };
+  for (int i = 0; i <= cells; i++)
+    for (int j = 0; j <= cells; j++) {
+      const LD x = box[0] + i * dx, y = box[2] + j * dy;
+      if (inside(x, y)) at(i, j) = delta(direction(x, y));
+    }
+  struct Start { LD v, x, y; };
+  std::vector<Start> starts;
+  for (int i = 0; i <= cells; i++)
+    for (int j = 0; j <= cells; j++) {
+      if (at(i, j) >= 1e300L) continue;
+      bool lowest = true;
+      for (int di = -1; di <= 1; di++)
+        for (int dj = -1; dj <= 1; dj++) {
+          const int ni = i + di, nj = j + dj;
+          if (ni >= 0 && nj >= 0 && ni <= cells && nj <= cells && at(ni, nj) < at(i, j))
+            lowest = false;
+        }
+      if (lowest) starts.push_back({at(i, j), box[0] + i * dx, box[2] + j * dy});
+    }
+  for (const Start &start : starts) {
+    LD x = start.x, y = start.y, v = start.v, step = dx;
+    while (step > 1e-13L) {
+      bool moved = false;
+      for (const auto &dir : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1},
+                              {-1, -1}, {1, -1}, {-1, 1}}) {
+        const LD xn = x + dir[0] * step, yn = y + dir[1] * step;
+        if (!inside(xn, yn)) continue;
+        const LD vn = delta(direction(xn, yn));
+        if (vn < v) x = xn, y = yn, v = vn, moved = true;
+      }
+      step = moved ? std::min(2 * step, dx) : step / 2;    // long valleys in few moves
+    }
+    if (v < best.overlap) best = {v, direction(x, y)};
+  }
+}
+
+V3L to_ld(const Vec3 &v)
+{
+  return {v[0], v[1], v[2]};
+}
+
+V3L unit(const V3L &v)
+{
+  const LD l = norm3(v);
+  return {v[0] / l, v[1] / l, v[2] / l};
+}
+
+// the box lower <= F^T (x - o) <= upper, F's columns the frame; an octant's directions
+// n ~ (s0 x, s1 y, s2 (1 - x - y)) in the frame over the triangle x, y >= 0, x + y <= 1
+SolidOracle box_oracle(const RawEllipsoid &r, const Vec3 &o, const Mat3 &frame, const Vec3 &lower,
+                       const Vec3 &upper)
+{
+  SolidOracle best;
+  const V3L c{r.c[0], r.c[1], r.c[2]};
+  for (int octant = 0; octant < 8; octant++) {
+    const LD sign[3] = {octant & 1 ? 1.0L : -1.0L, octant & 2 ? 1.0L : -1.0L,
+                        octant & 4 ? 1.0L : -1.0L};
+    V3L corner = to_ld(o);
+    for (int k = 0; k < 3; k++) {
+      const LD at = sign[k] > 0 ? upper[k] : lower[k];
+      for (int i = 0; i < 3; i++) corner[i] += frame(i, k) * at;
+    }
+    auto direction = [&](LD x, LD y) {
+      const LD local[3] = {sign[0] * x, sign[1] * y, sign[2] * (1 - x - y)};
+      V3L n{};
+      for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) n[i] += frame(i, k) * local[k];
+      return unit(n);
+    };
+    auto triangle = [](LD x, LD y) { return x >= 0 && y >= 0 && x + y <= 1; };
+    auto delta = [&](const V3L &n) { return half_width(r, n) + dot3(n, corner) - dot3(n, c); };
+    patch_minimum(direction, triangle, delta, {0, 1, 0, 1}, best);
+  }
+  return best;
+}
+
+// the cylinder of radius R about the axis through o along u, caps at s = lo, hi; a
+// hemisphere's directions in the frame (e1, e2, +-u) over two charts, the lower minimum of
+// the two: n = (x, y, sqrt(1 - x^2 - y^2)) over the unit disc (the kink at the cap's normal
+// is a point of it) and the angles (phi, psi) from the cap's normal (the side's directions
+// at psi = pi/2 a line of it; its pole left to the disc)
+SolidOracle post_oracle(const RawEllipsoid &r, const Vec3 &o, const Vec3 &u, double radius,
+                        double lo, double hi)
+{
+  SolidOracle best;
+  const V3L c{r.c[0], r.c[1], r.c[2]};
+  const V3L ul = to_ld(u), e1 = to_ld(u.unitOrthogonal()), e2 = to_ld(u.cross(u.unitOrthogonal()));
+  const LD pi = 3.141592653589793238462643383279502884L;
+  for (const LD sign : {-1.0L, 1.0L}) {
+    V3L cap = to_ld(o);
+    for (int i = 0; i < 3; i++) cap[i] += (sign > 0 ? hi : lo) * ul[i];
+    auto frame = [&](LD x, LD y, LD z) {
+      V3L n;
+      for (int i = 0; i < 3; i++) n[i] = sign * z * ul[i] + x * e1[i] + y * e2[i];
+      return unit(n);
+    };
+    auto disc_direction = [&](LD x, LD y) {
+      return frame(x, y, std::sqrt(std::max((LD) 0, 1 - x * x - y * y)));
+    };
+    auto angle_direction = [&](LD phi, LD psi) {
+      return frame(std::sin(psi) * std::cos(phi), std::sin(psi) * std::sin(phi), std::cos(psi));
+    };
+    auto delta = [&](const V3L &n) {
+      const LD axial = dot3(n, ul);
+      const V3L across{n[0] - axial * ul[0], n[1] - axial * ul[1], n[2] - axial * ul[2]};
+      return half_width(r, n) + dot3(n, cap) - dot3(n, c) + radius * norm3(across);
+    };
+    patch_minimum(disc_direction, [](LD x, LD y) { return x * x + y * y <= 1; }, delta,
+                  {-1, 1, -1, 1}, best);
+    patch_minimum(angle_direction, [&](LD phi, LD psi) {
+      return phi >= -pi && phi <= 3 * pi && psi > 0 && psi <= pi / 2; }, delta,
+                  {0, 2 * pi, 0, pi / 2}, best);
+  }
+  return best;
+}
+
+// the kernel's contact against the oracle: in contact, the overlap to 1e-10 (the semi-axes
+// are at most 1) and the normal; apart, Separated. Returns whether the normal is a face's
+// (along one of `axes`).
+bool expect_solid_matches(const ContactGeometry &g, const SolidOracle &o,
+                          const std::vector<Vec3> &axes)
+{
+  EXPECT_TRUE(g.status == Status::Overlapping || g.status == Status::Separated)
+      << "status " << static_cast<int>(g.status);
+  if (o.overlap <= 0) {
+    EXPECT_EQ(g.status, Status::Separated) << "oracle " << (double) o.overlap;
+    EXPECT_LE(g.overlap, 0.0);
+    return false;
+  }
+  EXPECT_EQ(g.status, Status::Overlapping);
+  EXPECT_NEAR(g.overlap, (double) o.overlap, 1e-10);
+  for (int d = 0; d < 3; d++) EXPECT_NEAR(g.normal[d], -(double) o.n[d], 1e-7) << "normal " << d;
+  // the particle's deepest point moved by the overlap lies on the solid's supporting plane
+  EXPECT_NEAR(g.normal.dot(g.point_b - g.point_a), -g.overlap, 1e-12);
+  for (const Vec3 &a : axes)
+    if (std::fabs(std::fabs(g.normal.dot(a)) - 1.0) < 1e-9) return true;
+  return false;
+}
+
+Vec3 random_unit(std::mt19937_64 &rng)
+{
+  std::normal_distribution<double> g;
+  return Vec3(g(rng), g(rng), g(rng)).normalized();
+}
+
+constexpr int SOLID_CASES = 60;
+constexpr int POST_CASES = 30;    // its oracle's two charts cost more
+
+}    // namespace
+
+// centres near a box's edges and corners, at distances from 0 to about a largest semi-axis
+// beyond them in directions of the feature's normal cone: overlapping (edge, corner and face
+// contacts) and apart
+TEST(WallShapes, BoxFromOutsideAgainstBruteForce)
+{
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Vec3 o(0.3, -0.2, 0.5), lower(-1.5, -1.0, -2.0), upper(1.2, 0.8, 1.6);
+  const double quat[4] = {0.9, 0.2, -0.3, 0.25};
+  const Mat3 frame = quaternion_rotation(quat);
+  int touching = 0, at_edges = 0;
+  for (int k = 0; k < SOLID_CASES; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    // a corner or an edge's point (the third coordinate along the edge), a direction in its cone
+    Vec3 point, outward;
+    const bool corner = k % 2 == 0;
+    const int along = static_cast<int>(3 * u(rng));
+    for (int d = 0; d < 3; d++) {
+      const bool up = u(rng) < 0.5;
+      if (!corner && d == along) {
+        point[d] = lower[d] + (upper[d] - lower[d]) * u(rng);
+        outward[d] = 0.0;
+      } else {
+        point[d] = up ? upper[d] : lower[d];
+        outward[d] = (up ? 1.0 : -1.0) * (0.05 + u(rng));
+      }
+    }
+    const Vec3 c = o + frame * (point + 1.1 * u(rng) * outward.normalized());
+    for (int d = 0; d < 3; d++) r.c[d] = c[d];
+    WallSurface w;
+    w.shape = WallShape::Box;
+    w.center = o;
+    w.frame = frame;
+    w.lower = lower;
+    w.upper = upper;
+    const ContactGeometry g = wall_contact(kernel_ellipsoid(r), w);
+    const SolidOracle oracle = box_oracle(r, o, frame, lower, upper);
+    const bool face = expect_solid_matches(g, oracle, {frame.col(0), frame.col(1), frame.col(2)});
+    if (oracle.overlap > 0) touching++, at_edges += face ? 0 : 1;
+  }
+  // the cases reach contacts, most of them at an edge or a corner
+  EXPECT_GE(touching, SOLID_CASES / 3);
+  EXPECT_GE(at_edges, touching / 2);
+}
+
+// centres near a capped cylinder's rims (tilted from the cap's normal to the side's), overlapping
+// (rim, cap and side contacts) and apart
+TEST(WallShapes, CappedCylinderFromOutsideAgainstBruteForce)
+{
+  std::mt19937_64 rng(22);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Vec3 o(-0.4, 0.2, 0.1);
+  const double radius = 1.2, lo = -1.0, hi = 1.5;
+  int touching = 0, at_rims = 0;
+  for (int k = 0; k < POST_CASES; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    const Vec3 axis = random_unit(rng);
+    const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+    const bool top = u(rng) < 0.5;
+    const double phi = 2.0 * PI * u(rng), psi = 0.5 * PI * u(rng);
+    const Vec3 radial = std::cos(phi) * e1 + std::sin(phi) * e2;
+    const Vec3 rim = o + (top ? hi : lo) * axis + radius * radial;
+    const Vec3 outward = (top ? 1.0 : -1.0) * std::cos(psi) * axis + std::sin(psi) * radial;
+    const Vec3 c = rim + 1.1 * u(rng) * outward;
+    for (int d = 0; d < 3; d++) r.c[d] = c[d];
+    WallSurface w;
+    w.shape = WallShape::Cylinder;
+    w.inside = false;
+    w.center = o;
+    w.axis = axis;
+    w.radius = radius;
+    w.cap_lo = lo;
+    w.cap_hi = hi;
+    const ContactGeometry g = wall_contact(kernel_ellipsoid(r), w);
+    const SolidOracle oracle = post_oracle(r, o, axis, radius, lo, hi);
+    const bool cap = expect_solid_matches(g, oracle, {axis});
+    const bool side = std::fabs(g.normal.dot(axis)) < 1e-9;
+    if (oracle.overlap > 0) touching++, at_rims += cap || side ? 0 : 1;
+  }
+  EXPECT_GE(touching, POST_CASES / 3);
+  EXPECT_GE(at_rims, touching / 2);
+}
+
+// spheres: the distance to the nearest point of the solid in closed form; R* flat at a
+// block's edge, LAMMPS's 2R at a cylinder's rim, flat on its cap
+TEST(WallShapes, SphereOutsideSolidsClosedForm)
+{
+  const double r = 0.5, quat[4] = {1, 0, 0, 0};
+  WallSurface block;
+  block.shape = WallShape::Box;
+  block.lower = Vec3(0.0, 0.0, 0.0);
+  block.upper = Vec3(2.0, 3.0, 4.0);
+  // near the edge x = 2, y = 3 and near the corner (0, 0, 0)
+  const Vec3 edge_gap(0.2, 0.25, 0.0), corner_gap(-0.15, -0.2, -0.1);
+  const ContactGeometry edge =
+      wall_contact(make_ellipsoid(Vec3(2.0, 3.0, 1.0) + edge_gap, quat, Vec3(r, r, r)), block);
+  EXPECT_EQ(edge.status, Status::Overlapping);
+  EXPECT_NEAR(edge.overlap, r - edge_gap.norm(), 1e-13);
+  EXPECT_NEAR((edge.normal + edge_gap.normalized()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(edge.point_b.x(), 2.0, 1e-12);
+  EXPECT_NEAR(edge.point_b.y(), 3.0, 1e-12);
+  EXPECT_DOUBLE_EQ(edge.effective_radius, r);
+  const ContactGeometry corner = wall_contact(make_ellipsoid(corner_gap, quat, Vec3(r, r, r)), block);
+  EXPECT_NEAR(corner.overlap, r - corner_gap.norm(), 1e-13);
+  EXPECT_NEAR(corner.point_b.norm(), 0.0, 1e-7);
+  const ContactGeometry apart =
+      wall_contact(make_ellipsoid(Vec3(2.4, 3.4, 1.0), quat, Vec3(r, r, r)), block);
+  EXPECT_EQ(apart.status, Status::Separated);
+
+  WallSurface post;
+  post.shape = WallShape::Cylinder;
+  post.inside = false;
+  post.radius = 1.0;
+  post.cap_lo = -1.0;
+  post.cap_hi = 2.0;
+  // beyond the top rim at (1, 0, 2), and above the cap
+  const Vec3 rim_gap(0.3, 0.0, 0.35);
+  const ContactGeometry rim =
+      wall_contact(make_ellipsoid(Vec3(1.0, 0.0, 2.0) + rim_gap, quat, Vec3(r, r, r)), post);
+  EXPECT_EQ(rim.status, Status::Overlapping);
+  EXPECT_NEAR(rim.overlap, r - rim_gap.norm(), 1e-13);
+  EXPECT_NEAR(rim.effective_radius, r * 2.0 / (r + 2.0), 1e-14);
+  const ContactGeometry cap =
+      wall_contact(make_ellipsoid(Vec3(0.3, 0.2, 2.4), quat, Vec3(r, r, r)), post);
+  EXPECT_NEAR(cap.overlap, 0.1, 1e-13);
+  EXPECT_NEAR(cap.normal.z(), -1.0, 1e-15);
+  EXPECT_DOUBLE_EQ(cap.effective_radius, r);
+}
+
+// an infinite bound is no face: the same contact as a bound far beyond the particle
+TEST(WallShapes, BoxInfiniteBoundIsAFarFace)
+{
+  std::mt19937_64 rng(23);
+  for (int k = 0; k < 10; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    r.c[0] = 1.3, r.c[1] = 1.2, r.c[2] = 0.5 * k;
+    WallSurface open, far;
+    open.shape = far.shape = WallShape::Box;
+    open.lower = far.lower = Vec3(-1.0, -1.0, -1.0);
+    far.upper = Vec3(1.0, 1.0, 1e6);
+    open.upper = Vec3(1.0, 1.0, INFINITY);
+    const ContactGeometry a = wall_contact(kernel_ellipsoid(r), open);
+    const ContactGeometry b = wall_contact(kernel_ellipsoid(r), far);
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_NEAR(a.overlap, b.overlap, 1e-12);
+    EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9);
+  }
 }

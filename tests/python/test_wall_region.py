@@ -1,11 +1,14 @@
 """fix wall/gran/region/ellipsoid against LAMMPS's fix wall/gran/region (sphere limit).
 
 Spheres placed against a region's faces (side, caps, edges and corners inside the region;
-a ball and a post from outside; one sphere whose centre the region does not match, one free) get the forces and torques of LAMMPS's
+a ball, a post, a block's faces, edges and corners and a capped post's side, caps and rims
+from outside; one sphere whose centre the region does not match, one free) get the forces
+and torques of LAMMPS's
 fix wall/gran/region with the same region and the mapped law: hertz/material E nu e here is
 LAMMPS's `granular hertz/material E e nu damping coeff_restitution tangential
 linear_nohistory 0 0` (doc/pair_granular_ellipsoid.rst). The wall's contact radius is
-LAMMPS's (a cylinder's side -2R, a sphere's -R), so R* and with it the Hertz stiffness and
+LAMMPS's (a cylinder's side -2R, a sphere's -R; from outside a block's flat everywhere, a
+cylinder's 2R at its side and rims, flat on its caps), so R* and with it the Hertz stiffness and
 damping agree. A moving region (move by a variable) gives the wall's velocity to the damping
 as LAMMPS's does: trajectories agree step for step.
 """
@@ -96,6 +99,35 @@ def outside_positions(shape):
     return region, pos
 
 
+def block_outside_positions():
+    """Around a block (1.2 to 2.8 in x, y, z) from outside: against a face, along edges, at
+    corners, one free, and one centre inside the solid (left alone)."""
+    lo, hi, d = 1.2, 2.8, RADIUS - 0.006
+    diagonal = d / math.sqrt(2.0)
+    corner = d / math.sqrt(3.0)
+    pos = [(hi + d, 2.0, 2.1), (hi + diagonal, hi + diagonal + 0.002, 2.0),
+           (lo - diagonal, 1.9, hi + diagonal - 0.001), (2.3, lo - diagonal, lo - diagonal),
+           (lo - corner, lo - corner, lo - corner + 0.001), (hi + corner, lo - corner, hi + corner),
+           (3.6, 3.6, 3.6), (2.0, 2.1, 2.0)]
+    return "region r block 1.2 2.8 1.2 2.8 1.2 2.8 side out", pos
+
+
+def capped_post_positions():
+    """Around a post (a z cylinder, radius 0.8, capped at z = 1 and 3) from outside: its side,
+    its caps, its rims at several tilts, one free, and one centre inside the solid."""
+    c, big, lo, hi, d = 2.0, 0.8, 1.0, 3.0, RADIUS - 0.005
+    pos = [(c + big + d, c, 2.0), (2.1, 1.9, hi + d), (1.8, 2.2, lo - d)]
+    for k, (angle, tilt) in enumerate(((0.4, 0.3), (2.2, 0.8), (3.9, 1.2), (5.3, 0.6))):
+        up = 1.0 if k % 2 == 0 else -1.0
+        rim = np.array([c + big * math.cos(angle), c + big * math.sin(angle),
+                        hi if up > 0 else lo])
+        out = np.array([math.sin(tilt) * math.cos(angle), math.sin(tilt) * math.sin(angle),
+                        up * math.cos(tilt)])
+        pos.append(tuple(rim + (d - 0.002 * k) * out))
+    pos += [(3.6, 3.6, 3.6), (2.0, 2.1, 2.0)]
+    return "region r cylinder z 2 2 0.8 1.0 3.0 side out", pos
+
+
 def ball_positions():
     return outside_positions("ball")
 
@@ -150,7 +182,8 @@ def compare(region, positions, extra="", steps=(0, 20, 20, 20)):
 
 
 @pytest.mark.parametrize("case", [cylinder_positions, block_positions, sphere_positions,
-                                  cone_positions, ball_positions, post_positions])
+                                  cone_positions, ball_positions, post_positions,
+                                  block_outside_positions, capped_post_positions])
 def test_resting_region_matches_fix_wall_gran_region(case):
     region, positions = case()
     touching = compare(region, positions)
@@ -164,3 +197,12 @@ def test_moving_region_matches_fix_wall_gran_region():
     touching = compare(region + " move v_dx NULL NULL", positions,
                        extra="variable dx equal 0.5*time", steps=(0, 50, 50, 50))
     assert touching >= 3
+
+
+def test_rotating_block_outside_matches_fix_wall_gran_region():
+    """A block met from outside turning about z (its faces, edges and corners placed by the
+    region's rotation at every step, their velocity omega x r)."""
+    region, positions = block_outside_positions()
+    touching = compare(region + " rotate v_theta 2 2 2 0 0 1", positions,
+                       extra="variable theta equal 2.0*time", steps=(0, 50, 50, 50))
+    assert touching >= 4

@@ -40,8 +40,8 @@ def box(boundary="f f f"):
     ("f f f", "region r cylinder z 2 2 1.5 0.5 3.5", f"{LAW}", "needs region ID after the force law"),
     ("f f f", "region r cylinder z 2 2 1.5 0.5 3.5", f"{LAW} region r bogus",
      "Unknown fix wall/gran/region/ellipsoid keyword 'bogus'"),
-    ("f f f", "region r block 1 3 1 3 1 3 side out", f"{LAW} region r",
-     "region r side out has faces that meet at edges inside the box"),
+    ("f f f", "region r block 1 3 1 3 1 3 side out open 2", f"{LAW} region r",
+     "region r has side out and open faces; a region met from outside must be closed"),
     ("f f f", "region r cone z 2 2 0.5 1.5 0.5 3.5 side out", f"{LAW} region r",
      "region r is a cone with side out; a cone is supported with side in"),
     ("f f f", "variable rad equal 1.5\nregion r sphere 2 2 2 v_rad", f"{LAW} region r",
@@ -161,3 +161,27 @@ def test_a_particle_out_through_an_open_face_is_free():
     # the side at z: rho = 0.5 + 0.4 (z - 1), the normal tilted by cos(alpha) = 0.928
     assert np.linalg.norm(f[0]) > 0.0 and np.linalg.norm(side) > 0.0    # 0.139 from the side
     assert np.linalg.norm(f[1]) == 0.0    # below the outlet, 0.074 from the side continued
+
+
+@pytest.mark.parametrize("region,edge", [
+    ("region r block 1 3 1 3 1 3 side out", (3.13, 3.13, 2.0)),
+    ("region r cylinder z 2 2 0.8 1 3 side out", (2.93, 2.0, 3.13)),
+])
+def test_a_solid_met_from_outside_is_one_wall(region, edge):
+    """A block or a capped post with side out (faces meeting inside the box: once an ERROR)
+    is one wall, its faces, edges, corners and rims together: a sphere at an edge or a rim
+    feels it, the wall's force vector has one wall's three components."""
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(scenes.spheres_in_box("ellipsoid", (4, 4, 4), [edge], RADIUS))
+        lmp.commands_string(f"""
+            {region}
+            fix w all wall/gran/region/ellipsoid {LAW} region r
+            run 0 post no
+            """)
+        force = [lmp.extract_fix("w", 0, 1, k) for k in range(3)]
+        with pytest.raises(Exception, match="out-of-range"):
+            lmp.extract_fix("w", 0, 1, 3)
+    finally:
+        lmp.close()
+    assert np.linalg.norm(force) > 0.0
