@@ -25,22 +25,6 @@ import numpy as np
 BINS = 18
 
 
-def read_rows(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def append_row(path, row, fields):
-    new = not os.path.exists(path)
-    with open(path, "a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields)
-        if new:
-            w.writeheader()
-        w.writerow({k: row[k] for k in fields})
-
-
 def groups(rows):
     """{setting: its rows}, the default first, the others in the order they first ran"""
     out = {}

@@ -20,10 +20,8 @@ summary (summary.csv), the per-run rows (rows.csv) and the histograms (histogram
 written to --results (accuracy_table.py).
 """
 import argparse
-import csv
 import json
 import os
-import resource
 import shutil
 import subprocess
 import sys
@@ -32,9 +30,11 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "bench"))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 import accuracy_table    # noqa: E402
 import deposit_run    # noqa: E402
+from bench_rows import append_row, children_cpu, commit, read_rows    # noqa: E402
 
 # name: pair_style granular/ellipsoid keywords (doc/pair_granular_ellipsoid.rst)
 SETTINGS = {
@@ -50,20 +50,6 @@ FIELDS = ["setting", "keywords", "seed", "N", "np", "cpu_seconds", "wall_seconds
     ["commit", "started_utc", "load_start", "load_end"] + \
     ["F%d" % k for k in range(accuracy_table.BINS)]
 COUNTERS_LINE = "granular/ellipsoid counters: "
-
-
-def children_cpu():
-    """User + system CPU seconds of the finished child processes (and theirs)."""
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
-def commit():
-    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
-                          capture_output=True, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True).stdout.strip()
-    return head + ("+dirty" if dirty else "")
 
 
 def read_log(path):
@@ -128,7 +114,7 @@ def main(argv=None):
         for seed in args.seeds:
             for setting in args.settings:
                 done = {(r["setting"], int(r["seed"]), int(r["N"]))
-                        for r in accuracy_table.read_rows(rows_path)}
+                        for r in read_rows(rows_path)}
                 if (setting, seed, args.N) in done:
                     continue
                 out = os.path.join(args.out, "%s-N%d-s%d" % (setting, args.N, seed))
@@ -138,11 +124,11 @@ def main(argv=None):
                         "started_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime())}
                 row = run_deposit(setting, seed, args.N, args.np, out)
                 row.update(meta, load_end=os.getloadavg()[0])
-                accuracy_table.append_row(rows_path, row, FIELDS)
+                append_row(rows_path, row, FIELDS)
                 print("  CPU %.0f s, %d steps, phi %.4f, Z %.3f, at_rest %d"
                       % (row["cpu_seconds"], row["steps"], row["phi"], row["Z"],
                          row["at_rest"]), flush=True)
-    rows = accuracy_table.read_rows(rows_path)
+    rows = read_rows(rows_path)
     if not rows:
         sys.exit("run_accuracy: no rows in %s" % rows_path)
     os.makedirs(args.results, exist_ok=True)

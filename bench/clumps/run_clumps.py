@@ -16,11 +16,9 @@ per-run rows (rows.csv), the histograms (histograms.png) and the fitted clumps (
 are written to --results.
 """
 import argparse
-import csv
 import json
 import os
 import re
-import resource
 import shutil
 import subprocess
 import sys
@@ -31,7 +29,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "bench"))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+from bench_rows import append_row, children_cpu, read_rows    # noqa: E402
 import clump_analysis    # noqa: E402
 import clump_table    # noqa: E402
 import fit_clumps    # noqa: E402
@@ -127,29 +127,6 @@ def run_ellipsoids(seed, n, np_ranks, out):
     return row
 
 
-def children_cpu():
-    """User + system CPU seconds of the finished child processes (and theirs): the cost of a
-    run without the share of the cores that other jobs took (wall time on a loaded machine)."""
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
-def read_rows(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def append_row(path, row):
-    new = not os.path.exists(path)
-    with open(path, "a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=FIELDS)
-        if new:
-            w.writeheader()
-        w.writerow({k: row[k] for k in FIELDS})
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -190,7 +167,7 @@ def main(argv=None):
                     row = run_clump(int(r), seed, args.N, args.np, out, fit_dir, dt)
                 row.update(load_start=load_start, load_end=os.getloadavg()[0],
                            cpu_seconds=round(children_cpu() - cpu0, 2))
-                append_row(rows_path, row)
+                append_row(rows_path, row, FIELDS)
                 print("  %.0f s, %d steps, phi %.4f, Z %.3f, at_rest %d"
                       % (row["wall_seconds"], row["steps"], row["phi"], row["Z"],
                          row["at_rest"]), flush=True)

@@ -20,8 +20,8 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "accuracy"))
-import accuracy_table  # noqa: E402
+sys.path.insert(0, os.path.join(HERE, ".."))
+from bench_rows import read_rows  # noqa: E402
 
 MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
 LOOP = re.compile(r"^Loop time of (\S+) on")
@@ -51,7 +51,7 @@ def load(run_dirs):
     """the default setting's rows of the run folders, each with its log's memory and comm"""
     rows = []
     for folder in run_dirs:
-        for r in accuracy_table.read_rows(os.path.join(folder, "rows.csv")):
+        for r in read_rows(os.path.join(folder, "rows.csv")):
             if r["setting"] != "default":
                 continue
             log = os.path.join(folder, "default-N%d-s%d" % (int(r["N"]), int(r["seed"])),
