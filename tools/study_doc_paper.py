@@ -216,6 +216,10 @@ def fabric_row(data):
             "spheres: flat or undecided (see the verdict table)"]
 
 
+LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
+              "oblate": "oblate (eta = 1)"}
+
+
 def force_line_text(line, f):
     """one line's force-weighted anisotropy a_n + a_f and its own part a_f against a/c"""
     t = f["trends"]
@@ -233,10 +237,6 @@ def force_line_text(line, f):
                pm(last["a_total"]["mean"], last["a_total"]["se"], 3),
                shape((last["eta"], last["zeta"])), pm(total["slope"], total["se"], 4),
                z_cell(total), pm(own["slope"], own["se"], 4), z_cell(own)))
-
-
-LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
-              "oblate": "oblate (eta = 1)"}
 
 
 def forces_row(data):
