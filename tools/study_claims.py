@@ -63,7 +63,7 @@ from deposit_run import read_histo, read_packing  # noqa: E402
 from study_claims_md import markdown  # noqa: E402
 from study_stats import LINES, Pooled, line_maximum, on_line  # noqa: E402
 from study_depth import depth_claims  # noqa: E402
-from study_forces import forces  # noqa: E402
+from study_forces import forces, measured  # noqa: E402
 from study_verdicts import verdicts  # noqa: E402
 
 ISOTROPIC = 1.0 / (4.0 * math.pi)
@@ -124,6 +124,12 @@ class Selection:
     def has(self, name):
         """whether every deposit has a value of this column (older tables lack some)"""
         return all(d.get(name) not in (None, "") for d in self.deposits)
+
+    def with_forces(self):
+        """the Selection of the deposits that have the force measures, with their columns
+        (study_forces.measured: a_n, a_f, a_total, K0)"""
+        return Selection([dict(d, **m) for d in self.deposits
+                          if (m := measured(d)) is not None])
 
     def quantity(self, name):
         """the pooled SDs of another column of deposits.csv"""

@@ -7,12 +7,16 @@ particles (<V>: the mean particle volume over the mono-sized one) into the box o
 N, so their slabs hold the solid of the delta_r 0 deposits. Here, per delta_r, over the
 shapes poured at matched depth: X(delta_r, matched) - X(0) and, side by side on the same
 shapes, X(delta_r, the study's N) - X(0), with the slabs' thicknesses (shape_effects and
-depth of tools/study_verdicts.py; pooled seed SDs per group of shapes).
+depth of tools/study_verdicts.py; pooled seed SDs per group of shapes). The force measures
+(tools/study_forces.py) the same way over the deposits that have them (`forces`), and their
+trends along the diagonal at that delta_r (`force_trends`): does the force anisotropy grow
+with asphericity in a polydisperse deposit too?
 
 Finite size: each other (N, box) of the default law at delta_r 0 (the sets finite_size_*: a
 box twice as wide at the same height, N x 4 in its default box; and the study's box four times
 as deep, a `width` given) against the study's N in its default box, shape by shape.
 """
+from study_forces import MEASURES, forces
 from study_verdicts import depth, shape_effects
 
 
@@ -47,14 +51,19 @@ def depth_claims(everything, law, n):
             "depth": {"matched": depth(matched), "study_N": depth(subset(fixed, shapes)),
                       "delta_r_0": depth(subset(base, shapes))},
             "matched_depth": shape_effects(matched, base, "at delta_r %g, matched depth" % dr),
-            "study_N": shape_effects(fixed, base, "at delta_r %g, N %d" % (dr, n), shapes)})
+            "study_N": shape_effects(fixed, base, "at delta_r %g, N %d" % (dr, n), shapes),
+            "forces": shape_effects(matched.with_forces(), base.with_forces(),
+                                    "at delta_r %g, matched depth" % dr, quantities=MEASURES),
+            "force_trends": forces(matched.deposits)})
     for other in sorted({box(d) for d in mine if float(d["delta_r"]) == 0.0} - {study_box},
                         key=lambda b: (b[0], b[1] or 0.0)):
         sel = select(0.0, lambda b: b == other)
+        label = "at N %d%s" % (other[0], "" if other[1] is None else ", width %g" % other[1])
         shapes = set(sel.shapes)
         out["finite_size"].append({
             "N": other[0], "width": other[1], "shapes": [list(s) for s in sorted(shapes)],
             "depth": depth(sel), "depth_at_study_N": depth(subset(base, shapes)),
-            "effects": shape_effects(sel, base, "at N %d%s" % (
-                other[0], "" if other[1] is None else ", width %g" % other[1]), shapes)})
+            "effects": shape_effects(sel, base, label, shapes),
+            "forces": shape_effects(sel.with_forces(), base.with_forces(), label, shapes,
+                                    MEASURES)})
     return out if out["matched"] or out["finite_size"] else None

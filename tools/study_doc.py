@@ -183,6 +183,26 @@ def thickness(d):
     return "-" if d is None else "%.1f" % d["thickness_mean"]
 
 
+def slope_cell(line_entry, q):
+    if line_entry is None:
+        return "-"
+    t = line_entry["trends"][q]["slope_per_unit_a/c"]
+    return "%s (%s, a/c %g-%g): %s" % (pm(t["slope"], t["se"], 4), z_cell(t), t["from_a/c"],
+                                       t["to_a/c"], t["verdict"])
+
+
+def matched_forces_rows(matched, forces_at_0):
+    """the force measures at matched depth against delta_r 0, and their trend along the
+    diagonal at each delta_r beside delta_r 0's"""
+    rows = []
+    for m in matched:
+        diagonal = (m.get("force_trends") or {}).get("diagonal")
+        for q in (q for q in MEASURES if q in m.get("forces", {})):
+            rows.append(["%g" % m["delta_r"], NAMES[q], effect_cell(m["forces"][q], 3),
+                         slope_cell(diagonal, q), slope_cell(forces_at_0.get("diagonal"), q)])
+    return rows
+
+
 def depth_block(data):
     """delta_r at matched depth beside the study's N, and the finite-size check (claims.json
     `depth`, tools/study_depth.py)"""
@@ -203,6 +223,11 @@ def depth_block(data):
     out = [table(["delta_r", "matched points", "quantity", "X(delta_r) - X(0), matched depth",
                   "X(delta_r) - X(0), N %d" % data.n, "slab (d): matched / N %d / delta_r 0"
                   % data.n], rows)] if rows else []
+    forces = matched_forces_rows(c["matched"], data.claims.get("forces") or {})
+    if forces:
+        out.append(table(["delta_r", "force measure", "X(delta_r) - X(0), matched depth",
+                          "slope per unit a/c on eta = zeta at delta_r", "the same at delta_r 0"],
+                         forces))
     rows = []
     for f in c["finite_size"]:
         box = "N %d, %s" % (f["N"], "default box" if f["width"] is None

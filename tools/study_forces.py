@@ -93,7 +93,7 @@ def line_forces(by_shape, line):
 
 
 def forces(deposits):
-    """claims.json `forces` from the deposits of the default law at delta_r 0 (dicts with
+    """claims.json `forces` from the deposits of one law and delta_r (dicts with
     eta, zeta and the columns of deposits.csv): {line: entry} for the lines of LINES that have
     3 shapes with two deposits each; None when no line has"""
     by_shape = {}

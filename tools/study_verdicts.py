@@ -187,12 +187,12 @@ def depth(selection):
             "solid_per_area_mean": float(solid.mean())}
 
 
-def shape_effects(sel, base, label, shapes=None):
+def shape_effects(sel, base, label, shapes=None, quantities=QUANTITIES):
     """per quantity: X(sel) - X(base) over the shapes both have (of `shapes` if given; Q_zz
     without the sphere, whose long axis is arbitrary), their mean and its verdict ("larger" or
     "smaller" + label)"""
     out = {}
-    for q in (q for q in QUANTITIES if sel.has(q) and base.has(q)):
+    for q in (q for q in quantities if sel.has(q) and base.has(q)):
         p, p0 = sel.quantity(q), base.quantity(q)
         common = [s for s in p.values if s in p0.values and (shapes is None or s in shapes)
                   and not (q == "Qzz" and s == (1.0, 1.0))]

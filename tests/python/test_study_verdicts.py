@@ -178,23 +178,45 @@ def test_delta_r_at_matched_depth_and_finite_size():
     import study_depth
     e, out = 0.001, []
 
-    def add(shapes, dr, n, width, shift, slab):
+    def add(shapes, dr, n, width, shift, slab, force_shift=None):
+        """force_shift: (a_n, a_f) added to the force measures (a_n 0.3 + 0.02 a/c, a_f 0.1 +
+        0.01 a/c, K0 0.6); None: a deposit that predates them (nan)"""
         for v in shapes:
             for d in deposit(v, v, e, 0.6 + 0.01 * v + shift, 6.0, 0.0, 0.1):
-                out.append(dict(d, law="coulomb", delta_r=dr, N=n, width=width, slab=slab))
-    add((1.0, 1.4, 2.0, 3.0), 0.0, 3000, "", 0.0, 7.0)
+                sign = 1 if d["phi"] > 0.6 + 0.01 * v + shift else -1
+                f = ({"a_n": "nan", "a_f": "nan", "K0": "nan"} if force_shift is None else
+                     {"a_n": 0.3 + 0.02 * v * v + force_shift[0] + sign * e,
+                      "a_f": 0.1 + 0.01 * v * v + force_shift[1] + sign * e,
+                      "K0": 0.6 + sign * e})
+                out.append(dict(d, law="coulomb", delta_r=dr, N=n, width=width, slab=slab, **f))
+    add((1.0, 1.4, 2.0, 3.0), 0.0, 3000, "", 0.0, 7.0, (0.0, 0.0))
     add((1.0, 1.4, 2.0, 3.0), 0.6, 3000, "", -0.100, 4.0)
-    add((1.4, 2.0), 0.6, 4327, 16.4317, 0.050, 7.0)
+    add((1.0, 1.4, 2.0), 0.6, 4327, 16.4317, 0.050, 7.0, (0.01, -0.02))
     add((1.4,), 0.0, 12000, "", 0.002, 7.0)
     add((1.4,), 0.0, 12000, 16.4317, -0.003, 40.0)
     c = study_depth.depth_claims(Selection(out), "coulomb", 3000)
     (m,) = c["matched"]
     assert m["delta_r"] == 0.6 and m["N"] == [4327] and m["width"] == [16.4317]
-    assert m["shapes"] == [[1.4, 1.4], [2.0, 2.0]]
+    assert m["shapes"] == [[1.0, 1.0], [1.4, 1.4], [2.0, 2.0]]
     assert m["matched_depth"]["phi"]["mean"] == pytest.approx(0.05)
-    assert m["matched_depth"]["phi"]["n"] == 2
-    assert m["matched_depth"]["phi"]["se"] == pytest.approx(e, rel=1e-6)    # e sqrt 2 / sqrt 2
-    assert m["study_N"]["phi"]["mean"] == pytest.approx(-0.1) and m["study_N"]["phi"]["n"] == 2
+    assert m["matched_depth"]["phi"]["n"] == 3
+    # each shape's difference has the SE e sqrt 2, their mean over 3 shapes e sqrt(2 / 3)
+    assert m["matched_depth"]["phi"]["se"] == pytest.approx(e * math.sqrt(2 / 3), rel=1e-6)
+    assert m["study_N"]["phi"]["mean"] == pytest.approx(-0.1) and m["study_N"]["phi"]["n"] == 3
+    # the forces: only where both have them (not the study-N deposits, which predate them)
+    f = m["forces"]
+    assert f["a_n"]["mean"] == pytest.approx(0.01) and f["a_f"]["mean"] == pytest.approx(-0.02)
+    assert f["a_total"]["mean"] == pytest.approx(-0.01) and f["K0"]["mean"] == pytest.approx(0)
+    assert f["a_n"]["n"] == 3 and f["a_f"]["verdict"].startswith("smaller at delta_r 0.6")
+    assert f["a_total"]["se"] == pytest.approx(2 * e * math.sqrt(2 / 3), rel=1e-6)
+    diagonal = m["force_trends"]["diagonal"]
+    assert [r["a/c"] for r in diagonal["per_shape"]] == pytest.approx([1, 1.96, 4])
+    assert diagonal["trends"]["a_total"]["slope_per_unit_a/c"]["slope"] == pytest.approx(0.03)
+    assert all(r["seeds"] == 2 for r in diagonal["per_shape"])
+    kept = Selection(out).with_forces().deposits    # delta_r 0 at N 3000 and the matched ones
+    assert len(kept) == 14 and {(d["delta_r"], d["N"]) for d in kept} == {(0.0, 3000),
+                                                                          (0.6, 4327)}
+    assert all(d["a_total"] == pytest.approx(d["a_n"] + d["a_f"]) for d in kept)
     assert m["matched_depth"]["phi"]["verdict"].startswith("larger at delta_r 0.6, matched")
     assert m["study_N"]["phi"]["verdict"].startswith("smaller at delta_r 0.6, N 3000")
     assert (m["depth"]["matched"]["thickness_mean"], m["depth"]["study_N"]["thickness_mean"],
