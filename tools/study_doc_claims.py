@@ -48,16 +48,17 @@ def maximum_rows(v):
     rows = []
     for m in v["maximum"]:
         fits = ", ".join("%s %.3f" % (k, x) for k, x in m["fits"].items() if x is not None)
-        far = abs(m["z_from_1.4"]) >= 3
         rows.append([
             "diagonal maximum's position, delta_r %g, %s" % (m["delta_r"], m["law"]),
             "%.3f +- %.3f (bootstrap) +- %.3f (fit window: %s); phi_max %s +- %.4f (window)"
             % (m["x_max"], m["stat"] or 0.0, m["sys"], fits,
                pm(m["phi_max"], m["phi_stat"], 4), m["phi_sys"]),
-            "from 1.4: %s; from the golden ratio 1.618: %s" % (z_text(m["z_from_1.4"]),
-                                                              z_text(m["z_from_golden_ratio"])),
-            ("differs from 1.4" if far else "agrees with 1.4") + "; the golden ratio is "
-            + ("excluded" if abs(m["z_from_golden_ratio"]) >= 3 else "not excluded")])
+            "from 1.4: %s; from the golden ratio 1.618: %s" % (
+                z_cell({"z": m["z_from_1.4"], "dof": m["dof"],
+                        "z_equivalent": m["z_equivalent_from_1.4"]}),
+                z_cell({"z": m["z_from_golden_ratio"], "dof": m["dof"],
+                        "z_equivalent": m["z_equivalent_from_golden_ratio"]})),
+            "%s; %s" % (m["from_1.4"], m["from_golden_ratio"])])
     return rows
 
 
@@ -193,17 +194,21 @@ def sphere_rows(v):
     for key, s in v.get("sphere_isotropy", {}).items():
         if not s:
             continue
-        big = s["largest"]
+        big, sig = s["largest"], s["most_significant"]
         beyond = ["%.2f: %+.0f +- %.0f %%" % (t, 100 * d, 100 * e)
                   for t, d, e in zip(s["theta"], s["deviation"], s["se"]) if abs(d) > 0.10]
         rows.append(["sphere's contact normals against 1/(4 pi), %s" % key,
-                     "largest deviation %+.1f +- %.1f %% at theta %.2f; bins beyond 10 %%: %s; "
-                     "chi^2 %.1f for %d bins (errors: per-bin seed SD pooled over the sphere's "
-                     "deposits, %d dof)" % (100 * big["deviation"], 100 * big["se"],
-                                            big["theta"], "; ".join(beyond) or "none",
-                                            s["chi2"], s["chi2_dof"], s["dof_of_the_errors"]),
-                     "largest: %s; chi^2 p = %.1g; with counting errors chi^2 %.1f, p = %.1g"
-                     % (z_cell(dict(big, dof=s["dof_of_the_errors"])), s["p_isotropic"],
+                     "most significant deviation %+.1f +- %.1f %% at theta %.2f; largest %+.0f +- "
+                     "%.0f %% at theta %.2f; bins beyond 10 %%: %s; chi^2 %.1f for %d bins "
+                     "(errors: per-bin seed SD pooled over the sphere's deposits of every "
+                     "delta_r and law, %d dof)"
+                     % (100 * sig["deviation"], 100 * sig["se"], sig["theta"],
+                        100 * big["deviation"], 100 * big["se"], big["theta"],
+                        "; ".join(beyond) or "none", s["chi2"], s["chi2_dof"],
+                        s["dof_of_the_errors"]),
+                     "most significant: %s; chi^2 p = %.1g; with counting errors chi^2 %.1f, "
+                     "p = %.1g"
+                     % (z_cell(dict(sig, dof=s["dof_of_the_errors"])), s["p_isotropic"],
                         s["chi2_counting"], s["p_counting"]),
                      "not isotropic (both chi^2 beyond 3 sigma)"
                      if max(s["p_isotropic"], s["p_counting"]) < 0.0027 else

@@ -6,6 +6,7 @@ import math
 from scipy import stats
 
 from study_doc_claims import pm, shape, table, z_cell, z_text
+from study_forces import shape_of_trend
 from study_stats import SIGMA, equivalent_sigma
 
 RCP = 0.64                  # random close packing of spheres
@@ -61,17 +62,26 @@ def density_rise_fall(data):
 
 def maximum_row(data):
     v = data.claims["verdicts"]
-    cells = ["%s, delta_r %g: %.3f +- %.3f +- %.3f (from 1.4 %s; from 1.618 %s)"
+    cells = ["%s, delta_r %g: %.3f +- %.3f +- %.3f (%s; %s)"
              % (m["law"], m["delta_r"], m["x_max"], m["stat"] or 0, m["sys"],
-                z_text(m["z_from_1.4"]), z_text(m["z_from_golden_ratio"]))
+                position_text(m, "1.4"), position_text(m, "golden_ratio"))
              for m in v["maximum"]]
-    agree = all(abs(m["z_from_1.4"]) < SIGMA for m in v["maximum"])
-    golden = all(abs(m["z_from_golden_ratio"]) >= SIGMA for m in v["maximum"])
+    near = all(m["from_1.4"].startswith("consistent") for m in v["maximum"])
+    excluded = ["%s delta_r %g" % (m["law"], m["delta_r"]) for m in v["maximum"]
+                if m["from_golden_ratio"].startswith("differs")]
+    where = ("at each" if len(excluded) == len(v["maximum"]) else
+             "at %s only" % ", ".join(excluded) if excluded else "nowhere")
     return ["maximum along eta = zeta near 1.4; the golden-ratio remark (1.618)",
-            "fitted maximum +- bootstrap +- fit window: " + "; ".join(cells),
-            ("agrees with 1.4 at every delta_r and law" if agree else "not everywhere near 1.4")
-            + "; the golden ratio is " + ("excluded at each (>= 3 sigma)" if golden
-                                          else "not excluded everywhere")]
+            "fitted maximum +- bootstrap +- fit window (sigma, then Student's t with the pooled "
+            "SD's dof): " + "; ".join(cells),
+            ("consistent with 1.4 at every delta_r and law" if near else
+             "not everywhere consistent with 1.4") + "; the golden ratio is excluded %s "
+            "(3 sigma, t)" % where]
+
+
+def position_text(m, key):
+    return "from %s %s, t %s" % ("1.618" if key == "golden_ratio" else key,
+                                 z_text(m["z_from_" + key]), z_text(m["z_equivalent_from_" + key]))
 
 
 def ridge_row(data):
@@ -106,9 +116,11 @@ def symmetry_row(data):
             "rise from spheres to the maximum); chi^2 %.1f for %d pairs (p = %.1g)"
             % (a["n"], pm(a["mean"], a["se"], 4), z_cell(a), rms, 100 * rms / rise,
                a["chi2"], a["n"], a["chi2_p"]),
-            "no tilt across the diagonal (mean within its error); pair by pair not symmetric "
-            "within the seed scatter" if a["chi2_p"] < 0.0027 else
-            "symmetric within the seed scatter"]
+            "no tilt detected: |mean| < %.4f at %g sigma; %s"
+            % (abs(a["mean"]) + SIGMA * a["se"], SIGMA,
+               "pair by pair not symmetric within the seed scatter (the pairs scatter %.1f times "
+               "their errors)" % a["birge_ratio"] if a["chi2_p"] < 0.0027 else
+               "symmetric within the seed scatter")]
 
 
 def constant_eta_row(data):
@@ -198,20 +210,27 @@ def fabric_row(data):
     a = data.base.quantity("fabric_anisotropy")
     diag = sorted(s for s in a.values if s[0] == s[1])
     s = data.claims["verdicts"]["sphere_isotropy"].get("delta_r 0, %s" % data.law)
-    deepen = diff(a, diag[-1], (2.0, 2.0)) if (2.0, 2.0) in a.values else None
+    deepen = (diff(a, (3.0, 3.0), (2.0, 2.0)) if {(2.0, 2.0), (3.0, 3.0)} <= set(a.values)
+              else None)
+    thinnest = diag[-1]
     cells = ", ".join("%s %s" % (shape(x), pm(a.mean(x), a.se(x), 3))
                       for x in diag[:1] + [d for d in diag if d[0] in (1.4, 2.0, 3.0)]
+                      + [thinnest] * (thinnest[0] > 3.0)
                       + [x for x in ((3.0, 1.0), (1.0, 3.0)) if x in a.values])
+    sig, big = s["most_significant"], s["largest"]
     return ["contact normals flat for spheres, maximum near theta = 0, minimum at pi/2, "
             "deepening with asphericity",
-            "a_z = F_zz - (F_xx + F_yy)/2: %s; a_z(3, 3) - a_z(2, 2) %s; spheres: largest "
-            "deviation from 1/(4 pi) %+.0f +- %.0f %% at theta %.2f, chi^2 %.0f for %d bins"
+            "a_z = F_zz - (F_xx + F_yy)/2: %s; a_z(3, 3) - a_z(2, 2) %s; spheres: most "
+            "significant deviation from 1/(4 pi) %+.1f +- %.1f %% at theta %.2f, largest %+.0f "
+            "+- %.0f %% at theta %.2f (per-bin errors pooled over the sphere deposits of every "
+            "delta_r and law), chi^2 %.0f for %d bins"
             % (cells, dtext(*deepen[:2], 3, deepen[3]) if deepen else "-",
-               100 * s["largest"]["deviation"], 100 * s["largest"]["se"], s["largest"]["theta"],
-               s["chi2"], s["chi2_dof"]),
-            "the ellipsoids: agrees (a_z grows with asphericity). Spheres: not flat (chi^2 "
-            "p = %.1g with pooled errors, %.1g with counting errors): the doc's earlier "
-            "'within 10 %%' was wrong" % (s["p_isotropic"], s["p_counting"])
+               100 * sig["deviation"], 100 * sig["se"], sig["theta"], 100 * big["deviation"],
+               100 * big["se"], big["theta"], s["chi2"], s["chi2_dof"]),
+            "the ellipsoids: %s. Spheres: not flat (chi^2 p = %.1g with pooled errors, %.1g "
+            "with counting errors)"
+            % ("a_z grows from a/c 4 to 9 (3 sigma, t)" if deepen and deepen[2] >= SIGMA else
+               "a_z from a/c 4 to 9 undecided", s["p_isotropic"], s["p_counting"])
             if s and max(s["p_isotropic"], s["p_counting"]) < 0.0027 else
             "spheres: flat or undecided (see the verdict table)"]
 
@@ -250,9 +269,9 @@ def forces_row(data):
     for line, f in lines.items():
         t = f["trends"]
         verdicts.append("%s: increasingly vertical: %s; faster than the contact normals' "
-                        "anisotropy (a_f): %s" % (LINE_NAMES[line],
-                                                  t["a_total"]["slope_per_unit_a/c"]["verdict"],
-                                                  t["a_f"]["slope_per_unit_a/c"]["verdict"]))
+                        "anisotropy (a_f): %s; K0: %s"
+                        % (LINE_NAMES[line], shape_of_trend(t["a_total"]),
+                           shape_of_trend(t["a_f"]), shape_of_trend(t["K0"])))
     return [claim, "; ".join(force_line_text(line, f) for line, f in lines.items()),
             "; ".join(verdicts)]
 

@@ -60,7 +60,36 @@ def trend(pooled, shapes):
     top = max(shapes[1:-1], key=pooled.mean, default=None)
     if top is not None and pooled.mean(top) > pooled.mean(shapes[-1]):
         out["thinnest_minus_largest"] = difference(pooled, shapes[-1], top, seeds)
+        out["largest_minus_roundest"] = difference(pooled, top, shapes[0], seeds)
+    # and one that dips: the lowest value between them against both ends
+    bottom = min(shapes[1:-1], key=pooled.mean, default=None)
+    if bottom is not None and pooled.mean(bottom) < min(pooled.mean(shapes[0]),
+                                                         pooled.mean(shapes[-1])):
+        out["thinnest_minus_smallest"] = difference(pooled, shapes[-1], bottom, seeds)
+        out["smallest_minus_roundest"] = difference(pooled, bottom, shapes[0], seeds)
     return out
+
+
+def shape_of_trend(t):
+    """a measure's course along a line from its trend entry: "not monotone" where it rises to
+    its largest value and falls after it (or dips and rises), each step decided; else the
+    slope's verdict"""
+    for first, then, up, down in (("largest_minus_roundest", "thinnest_minus_largest",
+                                   "rises", "falls"),
+                                  ("smallest_minus_roundest", "thinnest_minus_smallest",
+                                   "falls", "rises")):
+        a, b = t.get(first), t.get(then)
+        if a and b and not a["verdict"].startswith("undecided") and \
+                not b["verdict"].startswith("undecided"):
+            turn, end = a["shapes"][0], b["shapes"][0]
+            return ("not monotone: %s to a/c %g (%+.3f +- %.3f), then %s to a/c %g "
+                    "(%+.3f +- %.3f)" % (up, turn[0] * turn[1], a["difference"], a["se"], down,
+                                         end[0] * end[1], b["difference"], b["se"]))
+    slope, ends = t["slope_per_unit_a/c"]["verdict"], t["thinnest_minus_roundest"]
+    if not slope.startswith("undecided") and ends["verdict"].startswith("undecided"):
+        return "slope: %s, but the thinnest against the roundest: %+.3f +- %.3f, %s" % (
+            slope, ends["difference"], ends["se"], ends["verdict"])
+    return slope
 
 
 def difference(pooled, a, b, seeds):

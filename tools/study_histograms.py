@@ -143,7 +143,9 @@ def crossings_both(selection, pi_fraction):
 
 def sphere_isotropy(selections, key):
     """the sphere's contact normals in selection `key` against 1/(4 pi); the per-bin error
-    from the seed SD pooled over the sphere's deposits of every selection"""
+    from the seed SD pooled over the sphere's deposits of every selection (every delta_r and
+    law: the sphere is one shape per selection, too few seeds to pool within one); the bin of
+    the most significant deviation and the bin of the largest"""
     name = FILES["contact_normals"][0]
     spheres = {k: sel.shapes[(1.0, 1.0)] for k, sel in selections.items()
                if (1.0, 1.0) in sel.shapes}
@@ -164,16 +166,18 @@ def sphere_isotropy(selections, key):
     counts = sum(np.asarray(d[name][2])[half] * float(d["Nslab"]) * float(d["Z"])
                  for d in spheres[key]) if known else None
     z = mean / se
-    k = int(np.argmax(np.abs(z)))
+
+    def bin_entry(k):
+        return {"theta": float(theta[half][k]), "deviation": float(mean[k]), "se": float(se[k]),
+                "z": float(z[k]), "z_equivalent": equivalent_sigma(float(z[k]), dof)}
     chi2 = float(np.sum(z ** 2))
     bins = int(half.sum()) - 1    # the normalisation fixes one combination of the bins
     chi2_counting = float(np.sum(mean ** 2 * counts)) if known else None
     return {"seeds": n, "dof_of_the_errors": dof, "theta": theta[half].tolist(),
             "deviation": mean.tolist(), "se": se.tolist(),
             "se_counting": (1 / np.sqrt(counts)).tolist() if known else None,
-            "largest": {"theta": float(theta[half][k]), "deviation": float(mean[k]),
-                        "se": float(se[k]), "z": float(z[k]),
-                        "z_equivalent": equivalent_sigma(float(z[k]), dof)},
+            "most_significant": bin_entry(int(np.argmax(np.abs(z)))),
+            "largest": bin_entry(int(np.argmax(np.abs(mean)))),
             "chi2_counting": chi2_counting,
             "p_counting": float(stats.chi2.sf(chi2_counting, bins)) if known else None,
             "within_10_percent": bool(np.all(np.abs(mean) <= 0.10)),

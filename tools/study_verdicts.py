@@ -20,8 +20,8 @@ import numpy as np
 from scipy import stats
 
 from study_histograms import crossings_both, sphere_isotropy
-from study_stats import (MIN_DOF, SIGMA, THIN, decide, seeds_needed, sign_test, significance,
-                         weighted_slope)
+from study_stats import (MIN_DOF, SIGMA, THIN, decide, equivalent_sigma, seeds_needed,
+                         sign_test, significance, weighted_slope)
 
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
@@ -42,16 +42,23 @@ def errors(selections):
             for (dr, law), sel in selections.items() for q in QUANTITIES if sel.has(q)]
 
 
-def maximum_position(m):
-    """a fitted maximum's position against 1.4 and the golden ratio"""
+def maximum_position(m, dof):
+    """a fitted maximum's position against 1.4 and the golden ratio: z with its equivalent for
+    Student's t with dof (the pooled phi SD's) and "differs from" at 3 sigma, else
+    "consistent with" (not excluded; not a confirmation)"""
     if m is None or "x_max" not in m:
         return None
     err = math.hypot(m.get("x_max_sd") or 0.0, m["x_max_sys"])
-    return {"x_max": m["x_max"], "stat": m.get("x_max_sd"), "sys": m["x_max_sys"],
-            "fits": {k: f["x_max"] for k, f in m["fits"].items()},
-            "z_from_1.4": (m["x_max"] - 1.4) / err if err else None,
-            "z_from_golden_ratio": (m["x_max"] - GOLDEN) / err if err else None,
-            "phi_max": m["phi_max"], "phi_stat": m.get("phi_max_sd"), "phi_sys": m["phi_max_sys"]}
+    out = {"x_max": m["x_max"], "stat": m.get("x_max_sd"), "sys": m["x_max_sys"],
+           "fits": {k: f["x_max"] for k, f in m["fits"].items()}, "dof": dof,
+           "phi_max": m["phi_max"], "phi_stat": m.get("phi_max_sd"), "phi_sys": m["phi_max_sys"]}
+    for key, value, name in (("1.4", 1.4, "1.4"), ("golden_ratio", GOLDEN, "the golden ratio")):
+        z = (m["x_max"] - value) / err if err else None
+        ze = equivalent_sigma(z, dof)
+        out["z_from_" + key], out["z_equivalent_from_" + key] = z, ze
+        out["from_" + key] = ("differs from " if ze is not None and abs(ze) >= SIGMA
+                              else "consistent with ") + name
+    return out
 
 
 def compare_fits(a, b):
@@ -132,20 +139,34 @@ def equal_aspect(base, name, yes, no):
 
 
 def mean_of_differences(rows, seeds, dof, yes, no):
-    """rows [(difference, se, var at one seed)]: the mean, its error, its significance
-    (Student's t with dof, the fewest of the pooled SDs'), the sign test, chi^2 and the
-    verdict (with the seeds per point a 3-sigma mean needs)"""
+    """rows [(difference, se, var at one seed)]: the mean over the shapes, its error, its
+    significance (Student's t with dof, the fewest of the pooled SDs'), the sign test, chi^2
+    and the verdict (with the seeds per point a 3-sigma mean needs).
+
+    Where the differences scatter about their mean more than their errors allow (chi^2 about
+    the mean above its n - 1 degrees of freedom), the effect differs from shape to shape: the
+    error is then scaled by the Birge ratio sqrt(chi^2 / (n - 1)), taken with n - 1 degrees of
+    freedom, and the scatter between shapes counts as a systematic that more seeds do not
+    shrink"""
     d = np.array([r[0] for r in rows])
     n = len(rows)
-    se = math.sqrt(sum(r[1] ** 2 for r in rows)) / n
+    within = math.sqrt(sum(r[1] ** 2 for r in rows)) / n
     var1 = sum(r[2] for r in rows) / n ** 2
     mean = float(d.mean())
+    chi2_about_mean = float(sum(((r[0] - mean) / r[1]) ** 2 for r in rows))
+    birge = math.sqrt(chi2_about_mean / (n - 1)) if n > 1 else 1.0
+    se, between = within, 0.0
+    if birge > 1:
+        se, dof = within * birge, min(dof, n - 1) if dof else n - 1
+        between = within * math.sqrt(birge ** 2 - 1)
     z = significance(mean, se)
     chi2 = float(sum((r[0] / r[1]) ** 2 for r in rows))
     k, m, p = sign_test(d)
-    need = seeds_needed(mean, [(se, var1 / se ** 2)])    # se^2 * seeds = var1
-    return dict({"n": n, "mean": mean, "se": se, "positive": k, "nonzero": m,
+    need = seeds_needed(mean, [(within, var1 / within ** 2)], between)   # within^2 seeds = var1
+    return dict({"n": n, "mean": mean, "se": se, "se_within": within,
+                 "birge_ratio": birge, "positive": k, "nonzero": m,
                  "sign_p": p, "chi2": chi2, "chi2_p": float(stats.chi2.sf(chi2, n)),
+                 "chi2_about_mean": chi2_about_mean,
                  "sd_over_shapes": float(d.std(ddof=1)) if n > 1 else None, "seeds": seeds},
                 **decide(z, need, seeds, yes, no, dof))
 
@@ -279,7 +300,9 @@ def verdicts(claims, selections, law):
     diagonal_maxima.update({(m["delta_r"], m["law"]): m["diagonal_maximum"]
                             for m in claims["laws"]})
     for (dr, name), m in sorted(diagonal_maxima.items()):
-        position = maximum_position(m)
+        sel = selections.get((dr, name))
+        position = maximum_position(m, min(g["dof"] for g in sel.pooled.groups.values())
+                                    if sel else None)
         if position:
             out["maximum"].append(dict({"delta_r": dr, "law": name}, **position))
     for (dr, name), sel in selections.items():

@@ -241,7 +241,7 @@ def test_crossings_and_sphere_isotropy():
         assert mutual["median_se"] > 0
     s = study_histograms.sphere_isotropy({(0.0, "coulomb"): base}, (0.0, "coulomb"))
     assert s["deviation"][0] == pytest.approx(-0.2, abs=1e-5)
-    assert s["largest"]["theta"] == pytest.approx(THETA[0])
+    assert s["largest"]["theta"] == s["most_significant"]["theta"] == pytest.approx(THETA[0])
     assert not s["within_10_percent"] and s["p_isotropic"] < 1e-6
 
 
@@ -339,3 +339,47 @@ def test_force_figure_from_the_deposits_files(tmp_path):
                               str(tmp_path / "f.png"), "test")
     assert os.path.getsize(path) > 10000
     assert plot_forces.figure({}, deposits, str(tmp_path / "g.png"), "test") is None
+
+
+def test_mean_over_shapes_that_disagree():
+    """study_verdicts.mean_of_differences: differences that agree within their errors keep
+    the propagated error; one shape far off the others (the equal-a/c comparison's case)
+    widens it to the scatter between shapes, sd / sqrt(n) with n - 1 degrees of freedom, and
+    a mean that only that shape carries is no longer decided"""
+    e = 0.0007
+    agree = study_verdicts.mean_of_differences([(0.003 + x, e, 2 * e * e) for x in
+                                                (-1e-4, 0, 1e-4)], "5", 50, "up", "down")
+    assert agree["se"] == pytest.approx(e / math.sqrt(3)) and agree["birge_ratio"] < 1
+    assert agree["dof"] == 50 and agree["verdict"] == "up"
+    apart = study_verdicts.mean_of_differences([(-0.001, e, 2 * e * e), (0.001, e, 2 * e * e),
+                                                (0.008, e, 2 * e * e)], "5", 50, "up", "down")
+    assert apart["se"] == pytest.approx(apart["sd_over_shapes"] / math.sqrt(3), rel=1e-12)
+    assert apart["se_within"] == pytest.approx(e / math.sqrt(3)) and apart["dof"] == 2
+    assert apart["mean"] / apart["se_within"] > 6    # decided without the scatter
+    assert apart["verdict"].startswith("undecided at 5 seeds; no number of seeds")
+
+
+def test_course_of_a_force_measure():
+    """study_forces.shape_of_trend: a measure that rises and falls again (each step decided)
+    is "not monotone" whatever its slope; a decided slope whose ends do not differ says so"""
+    e = 0.01
+
+    def line(values):
+        deposits = []
+        for v, y in zip((1.0, 1.2, 1.4, 2.0, 3.0), values):
+            deposits += [{"eta": v, "zeta": v, "a_n": 0.1 + s * e, "a_f": y + s * e, "K0": 0.5 + s * e}
+                         for s in (1, -1)]
+        return study_forces.forces(deposits)["diagonal"]["trends"]["a_f"]
+
+    assert study_forces.shape_of_trend(line((0.0, 0.2, 0.3, 0.2, 0.1))).startswith(
+        "not monotone: rises to a/c 1.96 (+0.300 +- 0.014), then falls to a/c 9 (-0.200")
+    assert study_forces.shape_of_trend(line((0.3, 0.1, 0.0, 0.1, 0.2))).startswith(
+        "not monotone: falls to a/c 1.96")
+    assert study_forces.shape_of_trend(line((0.0, 0.02, 0.04, 0.1, 0.2))) == "grows with a/c"
+    # a decided slope whose ends are level within their errors (K0 on the diagonal)
+    assert study_forces.shape_of_trend({
+        "slope_per_unit_a/c": {"verdict": "grows with a/c"},
+        "thinnest_minus_roundest": {"difference": 0.098, "se": 0.111,
+                                    "verdict": "undecided at 3 seeds; needs 42"}}) == (
+        "slope: grows with a/c, but the thinnest against the roundest: +0.098 +- 0.111, "
+        "undecided at 3 seeds; needs 42")
