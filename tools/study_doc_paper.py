@@ -7,12 +7,14 @@ from scipy import stats
 
 from study_doc_claims import pm, shape, table, z_cell, z_text
 from study_forces import shape_of_trend
+from study_verdicts import PAPER_WORDS
 from study_stats import SIGMA, equivalent_sigma
 
 RCP = 0.64                  # random close packing of spheres
 DONEV_MAX = 0.735           # Donev et al. 2004, jammed ellipsoids near 1.25:1:0.8
 ZHOU = (1.8, 0.6)           # Zhou et al. 2011, densest gravity-packed prolate / oblate a/c
-FRICTIONAL_SPHERES = ("0.58-0.61", "4.5-5")    # phi and Z of frictional sphere deposits
+# jammed sphere packings without friction and at infinite friction (Silbert 2010): phi, Z
+SPHERE_LIMITS = {"frictionless": (0.64, 6.0), "infinite friction": (0.55, 4.0)}
 
 
 def diff(pooled, a, b):
@@ -39,6 +41,12 @@ def shared_diagonal(data):
     return laws, sorted(shapes)
 
 
+def fall_over_rise(rise, fall):
+    """-fall / rise with its error (the two share the top point: an upper bound)"""
+    r = -fall[0] / rise[0]
+    return r, abs(r) * math.hypot(fall[1] / fall[0], rise[1] / rise[0])
+
+
 def density_rise_fall(data):
     out, ratios, peaks = [], [], []
     laws, diag = shared_diagonal(data)
@@ -46,7 +54,7 @@ def density_rise_fall(data):
         p = data.sels[(0.0, law)].quantity("phi")
         top = max(diag, key=p.mean)
         rise, fall = diff(p, top, diag[0]), diff(p, diag[-1], top)
-        ratios.append("%s %.1f" % (law, -fall[0] / rise[0]))
+        ratios.append("%s %s" % (law, pm(*fall_over_rise(rise, fall), 2)))
         peaks.append("%s %s" % (law, "yes" if rise[2] >= SIGMA and fall[2] <= -SIGMA
                                 else "undecided"))
         out.append("%s: %s (spheres), %s %s, %s %s; rise %s, fall to %s %s"
@@ -285,9 +293,10 @@ def crossing_row(data, key, claim):
             % (mut["median"] / math.pi, mut["quartiles"][0] / math.pi,
                mut["quartiles"][1] / math.pi, mut["pairs"], iso["median"] / math.pi,
                iso["range"][0] / math.pi, iso["range"][1] / math.pi, len(iso["shapes"])),
-            "both readings lie above the paper's %.3f pi: by %.3f pi (each other) and %.3f pi "
-            "(the isotropic level)" % (c["paper"] / math.pi, (mut["median"] - c["paper"])
-                                       / math.pi, (iso["median"] - c["paper"]) / math.pi)]
+            "the paper: %s; the medians lie %+.3f pi (each other) and %+.3f pi (the isotropic "
+            "level) from %.3f pi" % (PAPER_WORDS[key], (mut["median"] - c["paper"]) / math.pi,
+                                     (iso["median"] - c["paper"]) / math.pi,
+                                     c["paper"] / math.pi)]
 
 
 def histograms_delta_r_row(data):
@@ -309,8 +318,9 @@ def histograms_delta_r_row(data):
 
 
 def law_row(data):
-    cells = []
+    cells, verdicts = [], []
     laws, diag = shared_diagonal(data)
+    maxima = {m["law"]: m for m in data.claims["verdicts"]["maximum"] if m["delta_r"] == 0}
     for law in laws:
         p = data.sels[(0.0, law)].quantity("phi")
         z = data.sels[(0.0, law)].quantity("Z")
@@ -320,9 +330,19 @@ def law_row(data):
                      % (law, pm(p.mean(diag[0]), p.se(diag[0]), 4), pm(p.mean(top), p.se(top), 4),
                         shape(top), pm(p.mean(diag[-1]), p.se(diag[-1]), 4), shape(diag[-1]),
                         min(zs), max(zs)))
+        m = maxima.get(law)
+        if m is None:
+            continue
+        err = math.hypot(m["phi_stat"] or 0.0, m["phi_sys"])
+        ze = equivalent_sigma((m["phi_max"] - RCP) / err, m["dof"])
+        ratio = fall_over_rise(diff(p, top, diag[0]), diff(p, diag[-1], top))
+        verdicts.append("%s: fitted maximum %+.4f +- %.4f from %g (t %s: %s), fall %s times "
+                        "the rise" % (law, m["phi_max"] - RCP, err, RCP, z_text(ze),
+                                      "above" if ze >= SIGMA else "not significantly above",
+                                      pm(*ratio, 2)))
     return ["which tangential law reproduces the paper (maximum 'significantly higher than "
-            "random close packing' %g, slow fall)" % RCP, "; ".join(cells),
-            "compare the rows above: the rise-to-fall ratios and the maxima per law"]
+            "the one observed in random close packing of spheres', taken as %g; slow fall)"
+            % RCP, "; ".join(cells), "; ".join(verdicts)]
 
 
 def claims_block(data):
@@ -361,9 +381,15 @@ def literature_rows(data):
                  "highest deposit %s at %s (%s)" % (pm(p.mean(top), p.se(top), 4), shape(top),
                                                     data.law),
                  "deposits stay below the jammed packings, as expected"])
-    rows.append(["frictional sphere deposits: phi %s, Z %s" % FRICTIONAL_SPHERES,
-                 "spheres (%s): phi %s, Z %s" % (data.law, pm(p.mean((1.0, 1.0)),
-                                                              p.se((1.0, 1.0)), 4),
-                                                 pm(z.mean((1.0, 1.0)), z.se((1.0, 1.0)), 2)),
-                 "phi at the top of the range; Z above it (Z counts overlapping pairs)"])
+    (phi_hi, z_hi), (phi_lo, z_lo) = SPHERE_LIMITS["frictionless"], \
+        SPHERE_LIMITS["infinite friction"]
+    sphere = (1.0, 1.0)
+    between = (phi_lo < p.mean(sphere) < phi_hi) and (z_lo < z.mean(sphere) < z_hi)
+    rows.append(["Silbert 2010: jammed spheres, phi %g and Z %g without friction, phi %g and Z "
+                 "%g at infinite friction" % (phi_hi, z_hi, phi_lo, z_lo),
+                 "spheres (%s, friction coefficient 0.5): phi %s, Z %s"
+                 % (data.law, pm(p.mean(sphere), p.se(sphere), 4),
+                    pm(z.mean(sphere), z.se(sphere), 2)),
+                 "between the two limits, as a finite friction puts them" if between else
+                 "outside the two limits"])
     return rows

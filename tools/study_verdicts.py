@@ -26,6 +26,8 @@ from study_stats import (MIN_DOF, SIGMA, THIN, decide, equivalent_sigma, seeds_n
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
 PAPER_ANGLES = {"contact_normals": 0.2, "long_axes": 1 / 3}    # pi/5, pi/3
+# the paper's words for them (Sec. 4): "slightly higher than theta ~ pi/5", "theta ~ pi/3"
+PAPER_WORDS = {"contact_normals": "slightly above pi/5", "long_axes": "about pi/3"}
 RIDGE_WINDOW = (1.4, 2.2)    # a/c across the spheroid lines' maxima (the study's set `ridge`)
 # the widest step in a/c a line is interpolated over: across the maximum a straight line over
 # 0.2 (the map's steps) is biased low by ~0.006 in phi (the prolate line falls 0.0078 from
@@ -238,7 +240,7 @@ def delta_r_effects(selections, law):
     if base is None:
         return []
     return [dict({"delta_r": dr, "depth": depth(sel), "depth_at_0": depth(base)},
-                 **shape_effects(sel, base, "at delta_r %g" % dr))
+                 **shape_effects(sel, base, "at delta_r %g, N fixed" % dr))
             for (dr, name), sel in selections.items() if name == law and dr != 0.0]
 
 
@@ -246,8 +248,9 @@ def slope_entry(z, shapes):
     """the weighted slope of Z against eta over the shapes, its significance and seeds"""
     slope, se = weighted_slope([s[0] for s in shapes], [z.mean(s) for s in shapes],
                                [z.se(s) for s in shapes])
-    seeds = len(z.values[shapes[0]])
-    need = seeds_needed(slope, [(se, seeds)])
+    counts = sorted({len(z.values[s]) for s in shapes})
+    seeds = "%d" % counts[0] if len(counts) == 1 else "%d-%d" % (counts[0], counts[-1])
+    need = seeds_needed(slope, [(se, counts[0])])
     return dict({"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes),
                  "slope": slope, "se": se},
                 **decide(slope / se, need, seeds, "rises", "falls", min(map(z.dof, shapes))))

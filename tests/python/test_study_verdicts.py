@@ -133,7 +133,7 @@ def test_asymmetry_delta_r_and_fall_back():
     q = d["Qzz"]
     assert q["n"] == 48 and q["mean"] == pytest.approx(0.01)    # the sphere left out
     assert q["se"] == pytest.approx(0.001 * math.sqrt(2) / math.sqrt(48), rel=1e-6)
-    assert q["verdict"] == "larger at delta_r 0.6" and q["seeds_needed"] is None
+    assert q["verdict"] == "larger at delta_r 0.6, N fixed" and q["seeds_needed"] is None
     assert d["depth"]["thickness_mean"] == 6.0
     f = study_verdicts.fall_back(base)
     # along eta = zeta, Z = 6.5 + 0.1 ac - 0.15 max(0, ac - 4): 6.9, 6.7875, 6.65 at eta = 2,
