@@ -60,7 +60,7 @@ def density_rise_fall(data):
         out.append("%s: %s (spheres), %s %s, %s %s; rise %s, fall to %s %s"
                    % (law, pm(p.mean(diag[0]), p.se(diag[0]), 4), pm(p.mean(top), p.se(top), 4),
                       shape(top), pm(p.mean(diag[-1]), p.se(diag[-1]), 4), shape(diag[-1]),
-                      dtext(*rise[:2], 4), shape(diag[-1]), dtext(*fall[:2], 4)))
+                      dtext(*rise[:2], 4, rise[3]), shape(diag[-1]), dtext(*fall[:2], 4, fall[3])))
     return ["density rises from spheres, peaks, then falls slowly with asphericity",
             "; ".join(out),
             "rises and peaks (both at 3 sigma): " + ", ".join(peaks) + ". Falls slowly: the "
@@ -154,16 +154,21 @@ def constant_eta_row(data):
 def delta_r_density_row(data):
     p = data.base.quantity("phi")
     diag = sorted(s for s in p.values if s[0] == s[1])
-    rise = max(p.mean(s) for s in diag) - p.mean(diag[0])
-    cells = ["delta_r %g: %s over %d shapes (positive in %d; %s), %.0f %% of the rise from "
-             "spheres to the maximum" % (e["delta_r"], pm(e["phi"]["mean"], e["phi"]["se"], 4),
-                                         e["phi"]["n"], e["phi"]["positive"],
-                                         z_cell(e["phi"]), 100 * e["phi"]["mean"] / rise)
-             for e in data.claims["verdicts"]["delta_r"] if "phi" in e]
+    rise = diff(p, max(diag, key=p.mean), diag[0])
+    cells = []
+    for e in (e for e in data.claims["verdicts"]["delta_r"] if "phi" in e):
+        m = e["phi"]
+        share = m["mean"] / rise[0]
+        cells.append("delta_r %g: %s over %d shapes (positive in %d; %s), %.0f +- %.0f %% of "
+                     "the rise from spheres to the maximum"
+                     % (e["delta_r"], pm(m["mean"], m["se"], 4), m["n"], m["positive"],
+                        z_cell(m), 100 * share,
+                        100 * abs(share) * math.hypot(m["se"] / m["mean"], rise[1] / rise[0])))
     return ["delta_r minor for density; polydisperse deposits denser",
-            "phi(delta_r) - phi(0): " + "; ".join(cells),
+            "phi(delta_r) - phi(0), N fixed: " + "; ".join(cells),
             "denser: yes at each delta_r; 'minor' is the reader's call against the percentages; "
-            "at fixed N delta_r also thins the measuring slab (verdicts below)"]
+            "at fixed N delta_r also thins the measuring slab (verdicts above; the section "
+            "'delta_r at matched depth')"]
 
 
 def z_row(data):
