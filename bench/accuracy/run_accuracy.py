@@ -5,14 +5,16 @@ under each setting of the knobs, several seeds each; its cost (CPU time, steps t
 time per particle-step) against what a user computes from it (phi, Z, the contact-normal
 histogram), each setting against the default and the default's own seed spread.
 
-    ./ellipsoid-dep bench accuracy [--N 4000] [--seeds 4928 4929 4930]
+    ./ellipsoid-dep bench accuracy [--N 4000 [N ...]] [--seeds 4928 4929 4930]
                                    [--settings default fast accurate correction5 tolerance1e-6]
-                                   [--np 1] [--out runs/accuracy] [--results results/accuracy]
-                                   [--table-only]
+                                   [--np 1] [--checkpoint-every 0] [--out runs/accuracy]
+                                   [--results results/accuracy] [--table-only]
 
 Runs one deposit at a time (tools/deposit_run.py, the settings' keywords through in.deposit's
-`pairkw` variable), seeds outermost so that the settings of one seed run back to back and a
-drift of the machine's load reaches them alike. Every (setting, seed, N) already in
+`pairkw` variable), seeds outermost, then N (several: the cost curve, bench/cost_curve), so
+that the settings and sizes of one seed run back to back and a drift of the machine's load
+reaches them alike. --checkpoint-every keeps restart checkpoints in the run folder (a deposit
+that does not come to rest can be inspected). Every (setting, seed, N) already in
 OUT/rows.csv is skipped, so an interrupted invocation continues where it stopped. The cost is
 the CPU time (user + system, getrusage of the finished children) of the run's processes: on a
 shared machine the wall time is mostly the other jobs' share. Then the table (table.md), the
@@ -20,6 +22,7 @@ summary (summary.csv), the per-run rows (rows.csv) and the histograms (histogram
 written to --results (accuracy_table.py).
 """
 import argparse
+import itertools
 import json
 import os
 import shutil
@@ -66,10 +69,10 @@ def read_log(path):
     return counters, warnings
 
 
-def run_deposit(setting, seed, n, np_ranks, out):
+def run_deposit(setting, seed, n, np_ranks, out, checkpoint_every=0):
     cmd = ["/usr/bin/python3", os.path.join(ROOT, "tools", "deposit_run.py"), "--np",
            str(np_ranks), "--N", str(n), "--seed", str(seed), "--out", out, "--no-image",
-           "--no-plots", "--quiet", "--checkpoint-every", "0"]
+           "--no-plots", "--quiet", "--checkpoint-every", str(checkpoint_every)]
     if SETTINGS[setting]:
         cmd += ["--var", "pairkw", SETTINGS[setting]]
     cpu0 = children_cpu()
@@ -94,10 +97,11 @@ def run_deposit(setting, seed, n, np_ranks, out):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--N", type=int, default=4000)
+    ap.add_argument("--N", type=int, nargs="+", default=[4000])
     ap.add_argument("--seeds", type=int, nargs="+", default=[4928, 4929, 4930])
     ap.add_argument("--settings", nargs="+", default=list(SETTINGS))
     ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--checkpoint-every", type=int, default=0)
     ap.add_argument("--out", default=os.path.join(ROOT, "runs", "accuracy"))
     ap.add_argument("--results", default=os.path.join(ROOT, "results", "accuracy"))
     ap.add_argument("--table-only", action="store_true")
@@ -106,28 +110,26 @@ def main(argv=None):
     if unknown:
         sys.exit("run_accuracy: unknown setting(s) %s; known: %s"
                  % (", ".join(unknown), ", ".join(SETTINGS)))
-    if args.N < 1 or args.np < 1:
-        sys.exit("run_accuracy: --N and --np must be positive")
+    if min(args.N) < 1 or args.np < 1 or args.checkpoint_every < 0:
+        sys.exit("run_accuracy: --N and --np must be positive, --checkpoint-every not negative")
     os.makedirs(args.out, exist_ok=True)
     rows_path = os.path.join(args.out, "rows.csv")
     if not args.table_only:
-        for seed in args.seeds:
-            for setting in args.settings:
-                done = {(r["setting"], int(r["seed"]), int(r["N"]))
-                        for r in read_rows(rows_path)}
-                if (setting, seed, args.N) in done:
-                    continue
-                out = os.path.join(args.out, "%s-N%d-s%d" % (setting, args.N, seed))
-                print("run_accuracy: %s (%s) seed %d N %d ..."
-                      % (setting, SETTINGS[setting] or "defaults", seed, args.N), flush=True)
-                meta = {"commit": commit(), "load_start": os.getloadavg()[0],
-                        "started_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime())}
-                row = run_deposit(setting, seed, args.N, args.np, out)
-                row.update(meta, load_end=os.getloadavg()[0])
-                append_row(rows_path, row, FIELDS)
-                print("  CPU %.0f s, %d steps, phi %.4f, Z %.3f, at_rest %d"
-                      % (row["cpu_seconds"], row["steps"], row["phi"], row["Z"],
-                         row["at_rest"]), flush=True)
+        for seed, n, setting in itertools.product(args.seeds, args.N, args.settings):
+            done = {(r["setting"], int(r["seed"]), int(r["N"])) for r in read_rows(rows_path)}
+            if (setting, seed, n) in done:
+                continue
+            out = os.path.join(args.out, "%s-N%d-s%d" % (setting, n, seed))
+            print("run_accuracy: %s (%s) seed %d N %d ..."
+                  % (setting, SETTINGS[setting] or "defaults", seed, n), flush=True)
+            meta = {"commit": commit(), "load_start": os.getloadavg()[0],
+                    "started_utc": time.strftime("%Y-%m-%d %H:%M", time.gmtime())}
+            row = run_deposit(setting, seed, n, args.np, out, args.checkpoint_every)
+            row.update(meta, load_end=os.getloadavg()[0])
+            append_row(rows_path, row, FIELDS)
+            print("  CPU %.0f s, %d steps, phi %.4f, Z %.3f, at_rest %d"
+                  % (row["cpu_seconds"], row["steps"], row["phi"], row["Z"], row["at_rest"]),
+                  flush=True)
     rows = read_rows(rows_path)
     if not rows:
         sys.exit("run_accuracy: no rows in %s" % rows_path)
