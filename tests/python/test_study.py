@@ -146,8 +146,9 @@ def test_deposit_not_at_rest_fails_its_job(tmp_path):
 
 def test_delta_r_vars_reach_their_delta_r_only(tmp_path):
     """config delta_r_vars: the deposits at one delta_r (a number or a string key) get its
-    variables over vars; a delta_r that is not in the study, one given twice and the old
-    point_vars are refused"""
+    variables over vars, a set's own vars its points; a delta_r that is not in the study, one
+    given twice, a point given different vars by two sets and the old point_vars are
+    refused"""
     config = yaml.safe_load(open(TINY))
     config["sets"]["spheroids"]["delta_r"] = [0, 0.3]
     config["vars"] = {"dtfrac": 0.05, "flytol": 1.0}
@@ -170,7 +171,19 @@ def test_delta_r_vars_reach_their_delta_r_only(tmp_path):
                           "delta_r_vars: delta_r 0.3 is given twice")):
         config["delta_r_vars"] = bad
         assert message in dry_run(ok=False)
-    del config["delta_r_vars"]
+    # a set's own vars, over both, reach its points only; two sets that give one point
+    # different vars are refused
+    config["delta_r_vars"] = {"0.3": {"dtfrac": 0.03}}
+    config["sets"]["tall"] = {"shapes": [[1.2, 1.2]], "delta_r": [0.3], "seeds": [1],
+                              "width": 4.5, "vars": {"dtfrac": 0.02}}
+    commands = [line for line in dry_run().splitlines() if "deposit_run.py" in line]
+    tall = [line for line in commands if "_W4.5_" in line]
+    assert len(tall) == 1 and "--var dtfrac 0.02" in tall[0] and "dtfrac 0.03" not in tall[0]
+    assert all("--var dtfrac 0.02" not in line for line in commands if line not in tall)
+    config["sets"]["taller"] = dict(config["sets"]["tall"], vars={"dtfrac": 0.01})
+    assert "sets tall and taller give the point eta1.2_zeta1.2_dr0.3_N100_W4.5_coulomb " \
+        "different vars" in dry_run(ok=False)
+    del config["sets"]["tall"], config["sets"]["taller"], config["delta_r_vars"]
     config["point_vars"] = {"eta1_zeta1_dr0_N100_coulomb": {"dtfrac": 0.03}}
     assert "point_vars was replaced by delta_r_vars" in dry_run(ok=False)
 
@@ -272,11 +285,15 @@ def test_paper_study_definition(tmp_path):
         else:
             boxes.setdefault(key + (int(d["N"]), d["box"]), set()).add(int(d["seed"]))
     # one time step for every deposit (the config's vars reach the runner) but those at
-    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars): 46 deposits at N 3000, 15
-    # at matched depth and the picture
+    # delta_r 0.6, whose damping needs a shorter one (delta_r_vars): 46 deposits at N 3000 and
+    # the picture; the 15 at matched depth, whose taller box hits harder, a shorter one still
+    # (their set's vars)
     commands = [line for line in text.splitlines() if "deposit_run.py" in line]
     damped = [line for line in commands if " --dr 0.6 " in line]
-    assert len(damped) == 62 and all("--var dt 0.00042" in line for line in damped), damped
+    matched = [line for line in damped if "_W16.4317_" in line]
+    assert len(damped) == 62 and len(matched) == 15
+    assert all("--var dt 0.00039" in line for line in matched), matched
+    assert all("--var dt 0.00042" in line for line in damped if line not in matched)
     # a set's own box reaches in.deposit as its width, and only there
     assert all(("--var width 16.4317" in line) == ("_W16.4317_" in line) for line in commands)
     assert all("--var dt 0.0006" in line for line in commands if line not in damped)

