@@ -16,6 +16,7 @@ data files, tables as JSON and markdown, the Pareto plot) goes to --out (default
 runs/bench/quick or runs/bench/full).
 """
 import argparse
+import csv
 import json
 import math
 import os
@@ -595,6 +596,30 @@ def deposit_markdown(rows):
                        f"{r['speedup']:.2f}"] for r in rows])
 
 
+def bench_clumps(out, n, seed):
+    """the ellipsoids against the closest clump (k = 15) at one seed, as `bench clumps` runs
+    them (2 ranks each, CPU time of the run)"""
+    sub = os.path.join(out, "clumps")
+    subprocess.run([sys.executable, os.path.join(ROOT, "bench", "clumps", "run_clumps.py"),
+                    "--N", str(n), "--seeds", str(seed), "--runs", "e", "15", "--out", sub,
+                    "--results", os.path.join(sub, "results")], check=True)
+    with open(os.path.join(sub, "rows.csv")) as f:
+        rows = {r["run"]: r for r in csv.DictReader(f)}
+    return [{"run": name, "N": n, "seed": seed,
+             **{k: float(rows[name][k]) for k in ("cpu_seconds", "steps", "phi", "Z")}}
+            for name in ("e", "k15")]
+
+
+def clumps_markdown(rows):
+    base = rows[0]["cpu_seconds"]
+    names = {"e": "ellipsoids (granular/ellipsoid)", "k15": "clumps k = 15 (rigid/small)"}
+    return fmt_table(["run", "N", "seed", "CPU time (s)", "CPU time / ellipsoids", "steps",
+                      "phi", "Z"],
+                     [[names[r["run"]], r["N"], r["seed"], f"{r['cpu_seconds']:.0f}",
+                       f"{r['cpu_seconds'] / base:.2f}", f"{r['steps']:.0f}", f"{r['phi']:.4f}",
+                       f"{r['Z']:.3f}"] for r in rows])
+
+
 def run_kernel():
     exe = os.path.join(ROOT, "build", "bench", "bench_kernel")
     if not os.access(exe, os.X_OK):
@@ -615,10 +640,13 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--full", action="store_true", help="bigger N, M, repeats; N up to 1e5")
     ap.add_argument("--out", help="output folder (default runs/bench/quick or runs/bench/full)")
-    ap.add_argument("--only", choices=["peers", "knobs", "scaling", "spheres", "deposit"],
+    ap.add_argument("--only", choices=["peers", "knobs", "scaling", "spheres", "deposit",
+                                       "clumps"],
                     action="append",
                     help="run only these parts (repeatable); deposit (the time to deposit "
-                    "N = 4000 on 2 and 1 ranks, minutes) runs by default only with --full")
+                    "N = 4000 on 2 and 1 ranks, minutes) and clumps (the ellipsoids against "
+                    "k = 15 clumps, N = 2000, one seed, minutes) run by default only with "
+                    "--full")
     ap.add_argument("--repeats", type=int)
     args = ap.parse_args()
     mode = "full" if args.full else "quick"
@@ -627,7 +655,7 @@ def main():
         shutil.rmtree(out)
     os.makedirs(out)
     parts = args.only or ["peers", "knobs", "scaling", "spheres"] + \
-        (["deposit"] if args.full else [])
+        (["deposit", "clumps"] if args.full else [])
     if args.full:
         cfg = {"n": 1000, "peer_k": 2, "M": 1000, "rep": args.repeats or 5, "knob_M": 500,
                "ks": [1, 2, 4, 8, 10], "nps": [1, 2]}
@@ -717,6 +745,15 @@ def main():
         m = spheres_markdown(rows)
         md += [f"\n### 4. Sphere path (1024 unit spheres on a wall, 1 rank, "
                f"M = {4 * cfg['M']}, median of {cfg['rep']})\n", m]
+        print(m, flush=True)
+    if "clumps" in parts:
+        print("[bench] 5. multi-sphere clumps: the ellipsoids against k = 15, N = 2000",
+              flush=True)
+        rows = bench_clumps(out, 2000, 4928)
+        report["clumps"] = rows
+        m = clumps_markdown(rows)
+        md += ["\n### 5. Multi-sphere clumps (the Fig. 3 shape at delta_r 0, N = 2000, one seed, "
+               "2 ranks each; whether they agree: `./ellipsoid-dep bench clumps`, 3 seeds)\n", m]
         print(m, flush=True)
     meta["seconds"] = time.time() - t0
     json.dump(report, open(os.path.join(out, "results.json"), "w"), indent=1, default=str)
