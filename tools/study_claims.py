@@ -65,6 +65,7 @@ from study_stats import LINES, Pooled, line_maximum, on_line  # noqa: E402
 from study_depth import depth_claims  # noqa: E402
 from study_forces import forces, measured  # noqa: E402
 from study_verdicts import verdicts  # noqa: E402
+from study_histograms import histogram_difference  # noqa: E402
 
 ISOTROPIC = 1.0 / (4.0 * math.pi)
 OTHER = "other"    # the group of shapes on none of the lines
@@ -255,30 +256,6 @@ def phi_differences(selection, reference):
     return {"per_shape": per_line, "mean": means}
 
 
-def seed_mean_histogram(deposits, name):
-    """theta, the mean P over the deposits, and its standard error per bin (None: one seed)"""
-    curves = [d[name] for d in deposits]
-    theta = np.asarray(curves[0][0])
-    if any(len(c[0]) != len(theta) for c in curves):
-        raise ValueError("histograms with different bins: %s" % [d["folder"] for d in deposits])
-    p = np.asarray([c[1] for c in curves])
-    sem = p.std(axis=0, ddof=1) / math.sqrt(len(p)) if len(p) > 1 else None
-    return theta, p.mean(axis=0), sem
-
-
-def histogram_difference(deposits, reference, histogram):
-    """rms over the bins of the seed-mean difference, and what the seed scatter gives"""
-    name = HISTOGRAMS[histogram][0]
-    theta, p, sem = seed_mean_histogram(deposits, name)
-    theta0, p0, sem0 = seed_mean_histogram(reference, name)
-    if not np.allclose(theta, theta0):
-        raise ValueError("%s: different bins at the two delta_r" % name)
-    noise = (float(np.sqrt(np.mean(sem ** 2 + sem0 ** 2)))
-             if sem is not None and sem0 is not None else None)
-    return {"rms_difference": float(np.sqrt(np.mean((p - p0) ** 2))),
-            "rms_seed_scatter": noise, "seeds": [len(deposits), len(reference)]}
-
-
 def histograms_with_delta_r(by_delta_r):
     """{delta_r: Selection} of one law: shapes at several delta_r, their crossings and their
     histograms' differences from delta_r = 0"""
@@ -296,7 +273,8 @@ def histograms_with_delta_r(by_delta_r):
                 h: mean_crossing(deposits, h) for h in HISTOGRAMS}))
             if dr != 0.0 and reference is not None and shape in reference.shapes:
                 entry["differences"].append(dict({"delta_r": dr}, **{
-                    h: histogram_difference(deposits, reference.shapes[shape], h)
+                    h: histogram_difference(deposits, reference.shapes[shape],
+                                            HISTOGRAMS[h][0])
                     for h in HISTOGRAMS}))
         out.append(entry)
     return out

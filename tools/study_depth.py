@@ -14,9 +14,12 @@ with asphericity in a polydisperse deposit too?
 
 Finite size: each other (N, box) of the default law at delta_r 0 (the sets finite_size_*: a
 box twice as wide at the same height, N x 4 in its default box; and the study's box four times
-as deep, a `width` given) against the study's N in its default box, shape by shape.
+as deep, a `width` given) against the study's N in its default box, shape by shape: the
+quantities, the force measures and both histograms (the rms over the bins of the seed-mean
+difference against the rms of its standard error).
 """
 from study_forces import MEASURES, forces
+from study_histograms import FILES, histogram_difference
 from study_verdicts import depth, shape_effects
 
 
@@ -65,5 +68,8 @@ def depth_claims(everything, law, n):
             "depth": depth(sel), "depth_at_study_N": depth(subset(base, shapes)),
             "effects": shape_effects(sel, base, label, shapes),
             "forces": shape_effects(sel.with_forces(), base.with_forces(), label, shapes,
-                                    MEASURES)})
+                                    MEASURES),
+            "histograms": [dict({"eta": s[0], "zeta": s[1]}, **{
+                h: histogram_difference(sel.shapes[s], base.shapes[s], FILES[h][0])
+                for h in FILES}) for s in sorted(shapes) if s in base.shapes]})
     return out if out["matched"] or out["finite_size"] else None

@@ -182,3 +182,27 @@ def sphere_isotropy(selections, key):
             "p_counting": float(stats.chi2.sf(chi2_counting, bins)) if known else None,
             "within_10_percent": bool(np.all(np.abs(mean) <= 0.10)),
             "chi2": chi2, "chi2_dof": bins, "p_isotropic": float(stats.chi2.sf(chi2, bins))}
+
+
+def seed_mean_histogram(deposits, name):
+    """theta, the mean P over the deposits, and its standard error per bin (None: one seed)"""
+    curves = [d[name] for d in deposits]
+    theta = np.asarray(curves[0][0])
+    if any(len(c[0]) != len(theta) for c in curves):
+        raise ValueError("histograms with different bins: %s" % [d["folder"] for d in deposits])
+    p = np.asarray([c[1] for c in curves])
+    sem = p.std(axis=0, ddof=1) / math.sqrt(len(p)) if len(p) > 1 else None
+    return theta, p.mean(axis=0), sem
+
+
+def histogram_difference(deposits, reference, name):
+    """rms over the bins of the seed-mean difference of histogram `name` (a deposit's key:
+    contact_histo, orient_histo), and what the seed scatter gives"""
+    theta, p, sem = seed_mean_histogram(deposits, name)
+    theta0, p0, sem0 = seed_mean_histogram(reference, name)
+    if not np.allclose(theta, theta0):
+        raise ValueError("%s: different bins in the two sets of deposits" % name)
+    noise = (float(np.sqrt(np.mean(sem ** 2 + sem0 ** 2)))
+             if sem is not None and sem0 is not None else None)
+    return {"rms_difference": float(np.sqrt(np.mean((p - p0) ** 2))),
+            "rms_seed_scatter": noise, "seeds": [len(deposits), len(reference)]}

@@ -81,7 +81,12 @@ def test_the_depth_block_from_its_claims():
              "finite_size": [{"N": 12000, "width": None, "shapes": [[1.4, 1.8]],
                               "depth": {"thickness_mean": 6.9},
                               "depth_at_study_N": {"thickness_mean": 7.1},
-                              "effects": {"Z": effect(-0.05, 0.04)}}]}
+                              "effects": {"Z": effect(-0.05, 0.04)},
+                              "histograms": [{"eta": 1.4, "zeta": 1.8, "contact_normals": {
+                                  "rms_difference": 0.0025, "rms_seed_scatter": 0.0035,
+                                  "seeds": [3, 3]}, "long_axes": {
+                                      "rms_difference": 0.0014, "rms_seed_scatter": None,
+                                      "seeds": [1, 3]}}]}]}
     data = type("Data", (), {"claims": {"depth": depth, "forces": {
         "diagonal": trends(0.0690, 0.0020, 16)}}, "n": 3000})()
     text = study_doc.depth_block(data)
@@ -92,6 +97,8 @@ def test_the_depth_block_from_its_claims():
     assert "v0.0031" in text and "0.0112 +- 0.0007" in text and "v0.0112" in text
     assert "7.0 / 4.5 / 7.0" in text
     assert "| N 12000, default box | (1.4, 1.8) | Z | -0.050 +- 0.040" in text
-    assert "6.9 / 7.1" in text
+    assert "v-0.05 | 0.170 | 6.9 / 7.1" in text    # |-0.05| + 3 x 0.04 excluded
+    assert "| N 12000, default box | (1.4, 1.8) | contact normals | 0.0025 | 0.0035 | 3 / 3 |" \
+        in text and "| long axes | 0.0014 | - | 1 / 3 |" in text
     data.claims = {"depth": None}
     assert study_doc.depth_block(data).startswith("No deposit at matched depth")

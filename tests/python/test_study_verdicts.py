@@ -227,6 +227,10 @@ def test_delta_r_at_matched_depth_and_finite_size():
     assert deep["effects"]["phi"]["mean"] == pytest.approx(-0.003)
     assert deep["effects"]["phi"]["se"] == pytest.approx(e * math.sqrt(2), rel=1e-6)
     assert deep["depth"]["thickness_mean"] == 40.0 and wide["shapes"] == [[1.4, 1.4]]
+    (h,) = wide["histograms"]    # the same histograms at both N: no difference, some scatter
+    assert (h["eta"], h["zeta"]) == (1.4, 1.4)
+    assert h["contact_normals"]["rms_difference"] == pytest.approx(0.0, abs=1e-15)
+    assert h["contact_normals"]["rms_seed_scatter"] > 0 and h["long_axes"]["seeds"] == [2, 2]
     assert study_depth.depth_claims(Selection(out[:8]), "coulomb", 3000) is None
 
 
