@@ -9,8 +9,9 @@ shapes poured at matched depth: X(delta_r, matched) - X(0) and, side by side on 
 shapes, X(delta_r, the study's N) - X(0), with the slabs' thicknesses (shape_effects and
 depth of tools/study_verdicts.py; pooled seed SDs per group of shapes). The force measures
 (tools/study_forces.py) the same way over the deposits that have them (`forces`), and their
-trends along the diagonal at that delta_r (`force_trends`): does the force anisotropy grow
-with asphericity in a polydisperse deposit too?
+trends along the diagonal at that delta_r (`force_trends`) beside delta_r 0's over the same
+shapes (`force_trends_at_0`): does the force anisotropy grow with asphericity in a
+polydisperse deposit too?
 
 Finite size: each other (N, box) of the default law at delta_r 0 (the sets finite_size_*: a
 box twice as wide at the same height, N x 4 in its default box; and the study's box four times
@@ -57,7 +58,8 @@ def depth_claims(everything, law, n):
             "study_N": shape_effects(fixed, base, "at delta_r %g, N %d" % (dr, n), shapes),
             "forces": shape_effects(matched.with_forces(), base.with_forces(),
                                     "at delta_r %g, matched depth" % dr, quantities=MEASURES),
-            "force_trends": forces(matched.deposits)})
+            "force_trends": forces(matched.deposits),
+            "force_trends_at_0": forces(subset(base, shapes).deposits)})
     for other in sorted({box(d) for d in mine if float(d["delta_r"]) == 0.0} - {study_box},
                         key=lambda b: (b[0], b[1] or 0.0)):
         sel = select(0.0, lambda b: b == other)

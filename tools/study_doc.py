@@ -191,15 +191,16 @@ def slope_cell(line_entry, q):
                                        t["to_a/c"], t["verdict"])
 
 
-def matched_forces_rows(matched, forces_at_0):
+def matched_forces_rows(matched):
     """the force measures at matched depth against delta_r 0, and their trend along the
-    diagonal at each delta_r beside delta_r 0's"""
+    diagonal at each delta_r beside delta_r 0's over the same shapes"""
     rows = []
     for m in matched:
         diagonal = (m.get("force_trends") or {}).get("diagonal")
+        at_0 = (m.get("force_trends_at_0") or {}).get("diagonal")
         for q in (q for q in MEASURES if q in m.get("forces", {})):
             rows.append(["%g" % m["delta_r"], NAMES[q], effect_cell(m["forces"][q], 3),
-                         slope_cell(diagonal, q), slope_cell(forces_at_0.get("diagonal"), q)])
+                         slope_cell(diagonal, q), slope_cell(at_0, q)])
     return rows
 
 
@@ -223,11 +224,11 @@ def depth_block(data):
     out = [table(["delta_r", "matched points", "quantity", "X(delta_r) - X(0), matched depth",
                   "X(delta_r) - X(0), N %d" % data.n, "slab (d): matched / N %d / delta_r 0"
                   % data.n], rows)] if rows else []
-    forces = matched_forces_rows(c["matched"], data.claims.get("forces") or {})
+    forces = matched_forces_rows(c["matched"])
     if forces:
         out.append(table(["delta_r", "force measure", "X(delta_r) - X(0), matched depth",
-                          "slope per unit a/c on eta = zeta at delta_r", "the same at delta_r 0"],
-                         forces))
+                          "slope per unit a/c on eta = zeta at delta_r",
+                          "the same at delta_r 0 (the same shapes)"], forces))
     rows = []
     for f in c["finite_size"]:
         box = "N %d, %s" % (f["N"], "default box" if f["width"] is None

@@ -77,7 +77,8 @@ def test_the_depth_block_from_its_claims():
                           "matched_depth": {"phi": effect(0.0031, 0.0007)},
                           "study_N": {"phi": effect(0.0112, 0.0007)},
                           "forces": {"a_total": effect(-0.021, 0.005)},
-                          "force_trends": {"diagonal": trends(0.0312, 0.0041, 9)}}],
+                          "force_trends": {"diagonal": trends(0.0312, 0.0041, 9)},
+                          "force_trends_at_0": {"diagonal": trends(0.0690, 0.0020, 9)}}],
              "finite_size": [{"N": 12000, "width": None, "shapes": [[1.4, 1.8]],
                               "depth": {"thickness_mean": 6.9},
                               "depth_at_study_N": {"thickness_mean": 7.1},
@@ -87,12 +88,11 @@ def test_the_depth_block_from_its_claims():
                                   "seeds": [3, 3]}, "long_axes": {
                                       "rms_difference": 0.0014, "rms_seed_scatter": None,
                                       "seeds": [1, 3]}}]}]}
-    data = type("Data", (), {"claims": {"depth": depth, "forces": {
-        "diagonal": trends(0.0690, 0.0020, 16)}}, "n": 3000})()
+    data = type("Data", (), {"claims": {"depth": depth}, "n": 3000})()
     text = study_doc.depth_block(data)
     assert ("| 0.6 | force-weighted fabric a_n + a_f | -0.021 +- 0.005 (-4.2 sigma (t with 10 "
             "dof: -4.2 sigma)): v-0.021 | 0.0312 +- 0.0041") in text
-    assert "a/c 1-9): v0.0312 | 0.0690 +- 0.0020" in text and "a/c 1-16): v0.069 |" in text
+    assert "a/c 1-9): v0.0312 | 0.0690 +- 0.0020" in text and "a/c 1-9): v0.069 |" in text
     assert "| 0.6 | 2 shapes, N 4327 | phi | 0.0031 +- 0.0007" in text
     assert "v0.0031" in text and "0.0112 +- 0.0007" in text and "v0.0112" in text
     assert "7.0 / 4.5 / 7.0" in text

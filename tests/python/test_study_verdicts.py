@@ -213,6 +213,10 @@ def test_delta_r_at_matched_depth_and_finite_size():
     assert [r["a/c"] for r in diagonal["per_shape"]] == pytest.approx([1, 1.96, 4])
     assert diagonal["trends"]["a_total"]["slope_per_unit_a/c"]["slope"] == pytest.approx(0.03)
     assert all(r["seeds"] == 2 for r in diagonal["per_shape"])
+    # delta_r 0 over the same shapes (not its whole diagonal, which reaches a/c 9 here)
+    at_0 = m["force_trends_at_0"]["diagonal"]
+    assert [r["a/c"] for r in at_0["per_shape"]] == pytest.approx([1, 1.96, 4])
+    assert at_0["trends"]["a_total"]["slope_per_unit_a/c"]["slope"] == pytest.approx(0.03)
     kept = Selection(out).with_forces().deposits    # delta_r 0 at N 3000 and the matched ones
     assert len(kept) == 14 and {(d["delta_r"], d["N"]) for d in kept} == {(0.0, 3000),
                                                                           (0.6, 4327)}
