@@ -12,7 +12,8 @@ and sets dt = min(dtfrac x the contact time, dtdamp x the damping time):
   particle is lighter (the pair's later reports are not shorter);
 * the default (delta_r 0.6) is bound by the damping, a stiffer pour with delta_r 0.3
   by the contact time;
-* no contact-time or damping WARNING (nor any other) appears; an explicit dt is used as given.
+* no contact-time or damping WARNING (nor any other) appears; an explicit dt is used as given,
+  with a WARNING when it exceeds the rule.
 """
 import math
 import re
@@ -101,7 +102,7 @@ def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, v
     assert lightest >= mmin * (1 - 1e-12)
     assert all(t >= probe_time * (1 - 1e-5) for t, _ in reports)
     assert all(t >= damping_reports[0] * (1 - 1e-5) for t in damping_reports[1:])
-    assert re.search(r"^time step \S+ = the shorter of \S+ x the Hertz contact time \S+ and "
+    assert re.search(r"^time step rule \S+ = the shorter of \S+ x the Hertz contact time \S+ and "
                      r"\S+ x the damping time", log, re.M)
     assert "ELLIPSOID_DEP deposit: N 100" in log
     # one chunk of 200 steps cannot bring the pour to rest: the only WARNING says so, and
@@ -113,12 +114,20 @@ def test_deposit_dt_is_the_stated_fraction_of_the_shorter_time(tmp_path, name, v
     assert packing["at_rest"].strip() == "0"
 
 
-def test_explicit_dt_is_used_as_given(tmp_path):
-    dt, _, _, log, _, _, _ = short_deposit(tmp_path, "explicit", {"dt": "2.5e-4"})
-    assert dt == 2.5e-4
-    assert not re.search(r"^time step ", log, re.M)    # no probe
+@pytest.mark.parametrize("given,above", [("2.5e-4", False), ("6.0e-4", True)])
+def test_explicit_dt_is_used_as_given_and_warned_above_the_rule(tmp_path, given, above):
+    """a given dt is used as given; the rule is still computed, and a dt above it (as a
+    study's fixed dt in a taller box) is a WARNING that names both"""
+    dt, _, _, log, _, _, _ = short_deposit(tmp_path, "explicit", {"dt": given})
+    assert dt == float(given)
+    rule = float(re.search(r"^time step rule (\S+) = the shorter of", log, re.M).group(1))
+    assert (dt > rule) == above, (dt, rule)
     warnings = re.findall(r"^WARNING.*", log, re.M)
-    assert len(warnings) == 1 and "NOT at rest" in warnings[0], warnings
+    assert "NOT at rest" in warnings[-1], warnings
+    assert len(warnings) == 1 + above, warnings
+    if above:
+        assert warnings[0].startswith("WARNING: the given dt %g exceeds the time step rule %g"
+                                      % (dt, rule)), warnings
 
 
 def test_deposit_writes_a_data_file_that_reads_back(tmp_path):
