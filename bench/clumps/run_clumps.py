@@ -71,7 +71,7 @@ def deposit_timestep(n, work):
                           "-var", "eta", str(ETA), "-var", "zeta", str(ZETA), "-var", "chunk",
                           "1", "-var", "maxchunks", "1", "-var", "image", "0", "-var", "out",
                           work], capture_output=True, text=True, cwd=work)
-    m = re.search(r"^time step (\S+) = ", out.stdout, re.M)
+    m = re.search(r"^time step rule (\S+) = ", out.stdout, re.M)
     if out.returncode != 0 or not m:
         sys.exit("run_clumps: in.deposit's time step probe failed:\n" + out.stdout[-2000:])
     return float(m.group(1))
