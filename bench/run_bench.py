@@ -16,7 +16,6 @@ data files, tables as JSON and markdown, the Pareto plot) goes to --out (default
 runs/bench/quick or runs/bench/full).
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -28,6 +27,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from bench_rows import commit, read_rows  # noqa: E402
 SCENES = os.path.join(ROOT, "bench", "scenes")
 SPACING = 1.6      # drop lattice spacing (> longest axis 2a = 1.52)
 FLOOR_D = 1.0      # frozen floor spheres
@@ -603,8 +604,7 @@ def bench_clumps(out, n, seed):
     subprocess.run([sys.executable, os.path.join(ROOT, "bench", "clumps", "run_clumps.py"),
                     "--N", str(n), "--seeds", str(seed), "--runs", "e", "15", "--out", sub,
                     "--results", os.path.join(sub, "results")], check=True)
-    with open(os.path.join(sub, "rows.csv")) as f:
-        rows = {r["run"]: r for r in csv.DictReader(f)}
+    rows = {r["run"]: r for r in read_rows(os.path.join(sub, "rows.csv"))}
     return [{"run": name, "N": n, "seed": seed,
              **{k: float(rows[name][k]) for k in ("cpu_seconds", "steps", "phi", "Z")}}
             for name in ("e", "k15")]
@@ -662,11 +662,7 @@ def main():
     else:
         cfg = {"n": 1000, "peer_k": 1, "M": 500, "rep": args.repeats or 3, "knob_M": 300,
                "ks": [1, 2], "nps": [1, 2]}
-    commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
-                            stdout=subprocess.PIPE, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
-                           stdout=subprocess.PIPE, text=True).stdout.strip()
-    meta = {"commit": commit + ("+dirty" if dirty else ""),
+    meta = {"commit": commit(),
             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
             "nproc": os.cpu_count(), "mode": mode,
             "load": os.getloadavg()[0]}
