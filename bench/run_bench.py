@@ -9,6 +9,8 @@
   ./ellipsoid-dep bench accuracy   the contact knobs' cost against phi, Z and the contact
                                    normals of whole default deposits (bench/accuracy/
                                    run_accuracy.py; hours on 2 shared cores)
+  ./ellipsoid-dep bench replicate  a settled deposit copied k x k times: the code's own cost
+                                   growth with N (bench/cost_curve/run_replicate.py; minutes)
 
 Needs the environment set by ./ellipsoid-dep (LAMMPS_BUILD, LAMMPS_PLUGIN_PATH).  Every number
 comes from this one invocation; timings are medians over interleaved repeats.  Output (logs,
@@ -632,7 +634,8 @@ def main():
     if len(sys.argv) > 1 and sys.argv[1] == "kernel":
         run_kernel()
     whole_deposits = {"clumps": os.path.join("clumps", "run_clumps.py"),
-                      "accuracy": os.path.join("accuracy", "run_accuracy.py")}
+                      "accuracy": os.path.join("accuracy", "run_accuracy.py"),
+                      "replicate": os.path.join("cost_curve", "run_replicate.py")}
     if len(sys.argv) > 1 and sys.argv[1] in whole_deposits:
         script = os.path.join(ROOT, "bench", whole_deposits[sys.argv[1]])
         os.execv(sys.executable, [sys.executable, script] + sys.argv[2:])

@@ -26,14 +26,28 @@ from bench_rows import read_rows  # noqa: E402
 MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
 LOOP = re.compile(r"^Loop time of (\S+) on")
 COMM = re.compile(r"^Comm\s+\|\s*\S+\s*\|\s*(\S+)\s*\|")
+# in.deposit's check after each chunk: the step, the inserted count, KE/particle against ketol
+# and the largest v^2/2gd against flytol
+PROGRESS = re.compile(r"^PROGRESS step (\d+) inserted (\S+) of (\d+) KE/particle (\S+) "
+                      r"target (\S+) flight (\S+) target (\S+)")
 
 
 def read_log(path):
     """(the largest memory estimate per rank in MB, the communication's share of the summed
-    loop time) of a LAMMPS log"""
+    loop time, the first checked steps after which all particles were in and KE/particle was
+    below ketol, and after which the largest v^2/2gd was below flytol) of a LAMMPS log"""
     memory, loop, comm = 0.0, 0.0, 0.0
+    ke_met, flight_met = math.nan, math.nan
     with open(path) as f:
         for line in f:
+            p = PROGRESS.match(line)
+            if p:
+                step, all_in = int(p.group(1)), float(p.group(2)) >= float(p.group(3))
+                if all_in and math.isnan(ke_met) and float(p.group(4)) < float(p.group(5)):
+                    ke_met = step
+                if all_in and math.isnan(flight_met) and float(p.group(6)) < float(p.group(7)):
+                    flight_met = step
+                continue
             for pattern, kind in ((MEMORY, "memory"), (LOOP, "loop"), (COMM, "comm")):
                 m = pattern.match(line)
                 if m:
@@ -44,7 +58,7 @@ def read_log(path):
                         loop += value
                     else:
                         comm += value
-    return memory, comm / loop if loop > 0 else math.nan
+    return memory, comm / loop if loop > 0 else math.nan, ke_met, flight_met
 
 
 def load(run_dirs):
@@ -58,7 +72,7 @@ def load(run_dirs):
                                "log.lammps")
             if not os.path.exists(log):
                 continue
-            r["memory_mb"], r["comm_share"] = read_log(log)
+            r["memory_mb"], r["comm_share"], r["ke_met"], r["flight_met"] = read_log(log)
             rows.append(r)
     return rows
 
@@ -76,6 +90,10 @@ def per_size(rows):
             "seeds": len(g), "cpu_seconds": float(np.median(cpu)),
             "steps": float(np.median(steps)),
             "us_per_particle_step": float(np.median(1e6 * cpu / (n * steps))),
+            "contacts_per_particle_step": float(np.median(
+                [float(r["contacts"]) / (n * float(r["steps"])) for r in g])),
+            "ke_met": float(np.median([r["ke_met"] for r in g])),
+            "flight_met": float(np.median([r["flight_met"] for r in g])),
             "memory_mb_per_rank": max(r["memory_mb"] for r in g),
             "kb_per_particle": 1024 * max(r["memory_mb"] for r in g) * ranks / n,
             "comm_share": float(np.median([r["comm_share"] for r in g]))}
@@ -115,19 +133,23 @@ def write(rows, results):
     sizes = per_size(rows)
     one_rank = {s: v for s, v in sizes.items() if s[1] == 1}
     lines = ["| N | ranks | seeds | CPU to deposit (s) | steps to rest | us per particle-step | "
-             "memory per rank (MB, LAMMPS's estimate) | kB per particle | comm share |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "contacts per particle-step | KE below ketol at step | flight below flytol at "
+             "step | memory per rank (MB, LAMMPS's estimate) | kB per particle | comm share |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (n, ranks), v in sizes.items():
-        lines.append("| %d | %d | %d | %.0f | %.0f | %.2f | %.1f | %.2f | %.3f |"
+        lines.append("| %d | %d | %d | %.0f | %.0f | %.2f | %.2f | %.0f | %.0f | %.1f | %.2f | "
+                     "%.3f |"
                      % (n, ranks, v["seeds"], v["cpu_seconds"], v["steps"],
-                        v["us_per_particle_step"], v["memory_mb_per_rank"],
+                        v["us_per_particle_step"], v["contacts_per_particle_step"],
+                        v["ke_met"], v["flight_met"], v["memory_mb_per_rank"],
                         v["kb_per_particle"], v["comm_share"]))
-    fits = {k: exponent(one_rank, k) for k in ("cpu_seconds", "us_per_particle_step", "steps")}
+    keys = ("cpu_seconds", "us_per_particle_step", "steps", "contacts_per_particle_step")
+    fits = {k: exponent(one_rank, k) for k in keys}
     lines.append("")
     lines.append("Exponents in N at 1 rank (log-log least squares over %d sizes): CPU to deposit "
-                 "%s, time per particle-step %s, steps to rest %s."
+                 "%s, time per particle-step %s, steps to rest %s, contacts per particle-step %s."
                  % (len(one_rank), *("%.3f" % fits[k] if fits[k] is not None else "-"
-                                     for k in ("cpu_seconds", "us_per_particle_step", "steps"))))
+                                     for k in keys)))
     lines.append("")
     lines.append(extrapolation(sizes))
     os.makedirs(results, exist_ok=True)

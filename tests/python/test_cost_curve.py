@@ -1,6 +1,8 @@
-"""The cost curve's table (bench/cost_curve/cost_table.py) on made-up rows and logs whose
-answers are known: the medians, the time per particle-step, the memory per particle, the
-communication's share summed over a log's runs, and the exponents in N."""
+"""The cost curve's tables on made-up rows and logs whose answers are known.
+bench/cost_curve/cost_table.py: the medians, the time and contacts per particle-step, the memory
+per particle, the communication's share summed over a log's runs, the first checks at which
+each rest condition held, and the exponents in N. bench/cost_curve/run_replicate.py: the last
+run's loop time, CPU use, section shares and contacts (the difference of cumulative counters)."""
 import csv
 import math
 import os
@@ -12,8 +14,13 @@ from conftest import root_dir
 
 sys.path.insert(0, os.path.join(root_dir(), "bench", "cost_curve"))
 import cost_table    # noqa: E402
+import run_replicate    # noqa: E402
 
 LOG = """Per MPI rank memory allocation (min/avg/max) = 10 | 11 | {mem} Mbytes
+PROGRESS step 1000 inserted 10 of {n} KE/particle 1e-2 target 1e-3 flight 0.5 target 1
+PROGRESS step 2000 inserted {n} of {n} KE/particle 1e-2 target 1e-3 flight 3 target 1
+PROGRESS step 3000 inserted {n} of {n} KE/particle 5e-4 target 1e-3 flight 2 target 1
+PROGRESS step 4000 inserted {n} of {n} KE/particle 2e-3 target 1e-3 flight 0.5 target 1
 Loop time of {loop1} on 1 procs for 1000 steps with {n} atoms
 Comm    | 0.1        | {comm1}      | 0.3        |   0.0 |  5.00
 Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 1.5 Mbytes
@@ -29,13 +36,14 @@ def make_runs(folder):
     for n in (1000, 4000, 16000):
         for seed, f in ((1, 0.9), (2, 1.1)):
             rows.append({"setting": "default", "seed": seed, "N": n, "np": 1,
-                         "cpu_seconds": f * n * 20000 * 1e-6, "steps": 20000})
+                         "cpu_seconds": f * n * 20000 * 1e-6, "steps": 20000,
+                         "contacts": 2.5 * n * 20000})
             run = folder / ("default-N%d-s%d" % (n, seed))
             run.mkdir()
             (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, loop1=3.0,
                                                        loop2=1.0, comm1=0.2, comm2=0.2))
     rows.append({"setting": "fast", "seed": 1, "N": 1000, "np": 1, "cpu_seconds": 1.0,
-                 "steps": 1})    # another setting: left out
+                 "steps": 1, "contacts": 1})    # another setting: left out
     with open(folder / "rows.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -52,8 +60,60 @@ def test_cost_table_by_hand(tmp_path):
         assert v["us_per_particle_step"] == pytest.approx(1.0)
         assert v["kb_per_particle"] == pytest.approx(2.0)
         assert v["comm_share"] == pytest.approx(0.4 / 4.0)    # summed over the log's runs
+        assert v["contacts_per_particle_step"] == pytest.approx(2.5)
+        # step 1000 had flight below flytol but not all particles in; KE held first at 3000
+        assert (v["ke_met"], v["flight_met"]) == (3000, 4000)
     assert fits["cpu_seconds"] == pytest.approx(1.0)
     assert fits["us_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
+    assert fits["contacts_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
     assert os.path.getsize(tmp_path / "out" / "cost_curve.png") > 5000
-    assert "| 16000 | 1 | 2 | 320 | 20000 | 1.00 |" in (tmp_path / "out" / "table.md").read_text()
+    assert "| 16000 | 1 | 2 | 320 | 20000 | 1.00 | 2.50 | 3000 | 4000 |" in (tmp_path / "out" / "table.md").read_text()
     assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))[1])    # no loop time
+
+
+REPLICATE_LOG = """Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 12.5 Mbytes
+granular/ellipsoid counters: {{"pairs": 9, "contacts": 1000}}
+Loop time of 9.0 on 2 procs for 1000 steps with {n} atoms
+granular/ellipsoid counters: {{"pairs": 9, "contacts": 4000}}
+Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 25 Mbytes
+Loop time of {loop} on 2 procs for 500 steps with {n} atoms
+
+90.0% CPU use with 2 MPI tasks x no OpenMP threads
+granular/ellipsoid counters: {{"pairs": 9, "contacts": {contacts}}}
+Section |  min time  |  avg time  |  max time  |%varavg| %total
+---------------------------------------------------------------
+Pair    | 1.0        | 1.5        | 2.0        |   0.0 | 75.00
+Neigh   | 0          | 0          | 0          |   0.0 |  0.00
+Comm    | 0.1        | 0.2        | 0.3        |   0.0 | 10.00
+Output  | 0.0001     | 0.0001     | 0.0001     |   0.0 |  0.00
+Modify  | 0.1        | 0.2        | 0.3        |   0.0 | 14.50
+Other   |            | 0.01       |            |       |  0.50
+"""
+
+
+def test_replicate_log_and_table(tmp_path):
+    rows = []
+    for k, loop in ((1, 1.0), (2, 8.0)):    # 4x the atoms, 8x the loop: exponent 0.5
+        n = 1000 * k * k
+        log = tmp_path / ("log%d" % k)
+        log.write_text(REPLICATE_LOG.format(n=n, loop=loop, contacts=4000 + 1500 * n))
+        run = run_replicate.read_log(str(log))
+        assert (run["N"], run["np"], run["steps"], run["loop_seconds"]) == (n, 2, 500, loop)
+        assert run["cpu_use"] == pytest.approx(0.9)
+        assert run["contacts"] == 1500 * n    # the last counters minus the ones before
+        assert run["memory_mb_per_rank"] == 25
+        assert run["shares"] == pytest.approx({"Pair": 0.75, "Neigh": 0.0, "Comm": 0.10,
+                                               "Output": 0.0, "Modify": 0.145, "Other": 0.005})
+        cpu = loop * 0.9 * 2
+        rows.append({"k": k, "N": n, "np": 2, "us_per_particle_step": 1e6 * cpu / (n * 500),
+                     "contacts_per_particle_step": 3.0,
+                     "ns_per_contact_step": 1e9 * cpu * 0.75 / (1500 * n),
+                     "share_pair": 0.75, "share_neigh": 0, "share_comm": 0.1,
+                     "share_modify": 0.145, "share_other": 0.005,
+                     "kb_per_particle": 1024 * 25 * 2 / n})
+    table = run_replicate.write_table(rows, str(tmp_path))
+    assert "| 1 x 1 | 1000 | 2 | 3.600 | 3.000 | 900 | 0.750 |" in table
+    assert "at 2 ranks (log-log least squares over 2 sizes): 0.500." in table
+    with pytest.raises(ValueError):    # a log without a measured run
+        (tmp_path / "empty").write_text("LAMMPS\n")
+        run_replicate.read_log(str(tmp_path / "empty"))
