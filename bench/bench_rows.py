@@ -1,10 +1,14 @@
 """The bookkeeping the whole-deposit benchmarks share (bench/clumps, bench/accuracy,
-bench/cost_curve): a run's CPU time and commit, and the rows.csv of the runs done so far,
-which lets an interrupted invocation continue where it stopped."""
+bench/cost_curve): a run's CPU time, peak memory and commit, and the rows.csv of the runs done
+so far, which lets an interrupted invocation continue where it stopped.
+
+    bench_rows.py --peak-rss CMD [ARG ...]   runs CMD, then prints its largest process's peak
+                                             resident set (run_measured's wrapper)"""
 import csv
 import os
 import resource
 import subprocess
+import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
@@ -14,6 +18,23 @@ def children_cpu():
     run without the share of the cores that other jobs took (wall time on a loaded machine)."""
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
+
+
+PEAK_RSS = "bench_rows: peak resident set of the largest process (kB): "
+
+
+def run_measured(cmd):
+    """cmd run to its end: (its CompletedProcess with the output captured, the CPU seconds of
+    its processes, the peak resident set in MB of the largest of them, e.g. an MPI rank).
+    A wrapper process runs cmd, so that getrusage's children's peak covers only this command's
+    process tree (Linux carries a child's largest descendant up to its parent)."""
+    cpu0 = children_cpu()
+    proc = subprocess.run([sys.executable, os.path.abspath(__file__), "--peak-rss"] + cmd,
+                          capture_output=True, text=True)
+    cpu = children_cpu() - cpu0
+    peak_kb = [line[len(PEAK_RSS):] for line in proc.stderr.splitlines()
+               if line.startswith(PEAK_RSS)]
+    return proc, cpu, float(peak_kb[-1]) / 1024 if peak_kb else float("nan")
 
 
 def commit():
@@ -34,10 +55,24 @@ def read_rows(path):
 
 
 def append_row(path, row, fields):
-    """one run's row, the header first in a new file"""
+    """one run's row, the header first in a new file; a file of other columns (an older
+    version's) is refused rather than appended to out of line"""
     new = not os.path.exists(path)
+    if not new:
+        with open(path) as f:
+            header = next(csv.reader(f), None)
+        if header != list(fields):
+            sys.exit("%s holds the columns of another version of this benchmark: give another "
+                     "--out (or move the file away)" % path)
     with open(path, "a", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
         if new:
             w.writeheader()
         w.writerow({k: row[k] for k in fields})
+
+
+if __name__ == "__main__" and len(sys.argv) > 2 and sys.argv[1] == "--peak-rss":
+    code = subprocess.run(sys.argv[2:]).returncode
+    print(PEAK_RSS + str(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss),
+          file=sys.stderr)
+    sys.exit(code)

@@ -26,7 +26,6 @@ import itertools
 import json
 import os
 import shutil
-import subprocess
 import sys
 import time
 
@@ -37,7 +36,7 @@ sys.path.insert(0, os.path.join(ROOT, "bench"))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 import accuracy_table    # noqa: E402
 import deposit_run    # noqa: E402
-from bench_rows import append_row, children_cpu, commit, read_rows    # noqa: E402
+from bench_rows import append_row, commit, read_rows, run_measured    # noqa: E402
 
 # name: pair_style granular/ellipsoid keywords (doc/pair_granular_ellipsoid.rst)
 SETTINGS = {
@@ -48,8 +47,8 @@ SETTINGS = {
     "tolerance1e-6": "tolerance 1e-6",      # looser than fast, iterations kept at 50
 }
 COUNTERS = ["contacts", "iterations", "corrections", "not_converged", "spurious_minima"]
-FIELDS = ["setting", "keywords", "seed", "N", "np", "cpu_seconds", "wall_seconds", "steps",
-          "at_rest", "phi", "Z", "Nslab", "fabric_anisotropy", "warnings"] + COUNTERS + \
+FIELDS = ["setting", "keywords", "seed", "N", "np", "cpu_seconds", "peak_rss_mb", "wall_seconds",
+          "steps", "at_rest", "phi", "Z", "Nslab", "fabric_anisotropy", "warnings"] + COUNTERS + \
     ["commit", "started_utc", "load_start", "load_end"] + \
     ["F%d" % k for k in range(accuracy_table.BINS)]
 COUNTERS_LINE = "granular/ellipsoid counters: "
@@ -75,9 +74,7 @@ def run_deposit(setting, seed, n, np_ranks, out, checkpoint_every=0):
            "--no-plots", "--quiet", "--checkpoint-every", str(checkpoint_every)]
     if SETTINGS[setting]:
         cmd += ["--var", "pairkw", SETTINGS[setting]]
-    cpu0 = children_cpu()
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    cpu = children_cpu() - cpu0
+    proc, cpu, peak_rss_mb = run_measured(cmd)
     if proc.returncode != 0:
         sys.exit("run_accuracy: %s seed %d failed (folder %s):\n%s"
                  % (setting, seed, out, proc.stdout[-2000:] + proc.stderr[-2000:]))
@@ -85,7 +82,8 @@ def run_deposit(setting, seed, n, np_ranks, out, checkpoint_every=0):
     _, _, fraction = deposit_run.read_histo(os.path.join(out, "contact_histo.dat"))
     counters, warnings = read_log(os.path.join(out, "log.lammps"))
     row = {"setting": setting, "keywords": SETTINGS[setting] or "(none)", "seed": seed, "N": n,
-           "np": np_ranks, "cpu_seconds": round(cpu, 2), "wall_seconds": pk["wall_seconds"],
+           "np": np_ranks, "cpu_seconds": round(cpu, 2), "peak_rss_mb": round(peak_rss_mb, 1),
+           "wall_seconds": pk["wall_seconds"],
            "steps": int(pk["steps"]), "at_rest": int(pk["at_rest"]), "phi": pk["phi"],
            "Z": pk["Z"], "Nslab": int(pk["Nslab"]),
            "fabric_anisotropy": pk["fabric_anisotropy"], "warnings": warnings}

@@ -24,7 +24,8 @@ sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_rows import read_rows  # noqa: E402
 
 MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
-LOOP = re.compile(r"^Loop time of (\S+) on")
+LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps")
+CPU_USE = re.compile(r"^(\S+)% CPU use with")
 COMM = re.compile(r"^Comm\s+\|\s*\S+\s*\|\s*(\S+)\s*\|")
 # in.deposit's check after each chunk: the step, the inserted count, KE/particle against ketol
 # and the largest v^2/2gd against flytol
@@ -33,11 +34,15 @@ PROGRESS = re.compile(r"^PROGRESS step (\d+) inserted (\S+) of (\d+) KE/particle
 
 
 def read_log(path):
-    """(the largest memory estimate per rank in MB, the communication's share of the summed
-    loop time, the first checked steps after which all particles were in and KE/particle was
-    below ketol, and after which the largest v^2/2gd was below flytol) of a LAMMPS log"""
+    """what a deposit's LAMMPS log says of its cost: the largest memory estimate per rank in
+    MB ("memory_mb"), the communication's share of the summed loop time ("comm_share"), the
+    first checked steps after which all particles were in and KE/particle was below ketol
+    ("ke_met") and after which the largest v^2/2gd was below flytol ("flight_met"), and the
+    CPU time of the runs so far after each run, [(steps, CPU seconds)] ("cpu_by_step": loop
+    time x CPU use x ranks)"""
     memory, loop, comm = 0.0, 0.0, 0.0
     ke_met, flight_met = math.nan, math.nan
+    steps, cpu, cpu_by_step = 0, 0.0, []
     with open(path) as f:
         for line in f:
             p = PROGRESS.match(line)
@@ -48,17 +53,41 @@ def read_log(path):
                 if all_in and math.isnan(flight_met) and float(p.group(6)) < float(p.group(7)):
                     flight_met = step
                 continue
-            for pattern, kind in ((MEMORY, "memory"), (LOOP, "loop"), (COMM, "comm")):
-                m = pattern.match(line)
-                if m:
-                    value = float(m.group(1))
-                    if kind == "memory":
-                        memory = max(memory, value)
-                    elif kind == "loop":
-                        loop += value
-                    else:
-                        comm += value
-    return memory, comm / loop if loop > 0 else math.nan, ke_met, flight_met
+            m = LOOP.match(line)
+            if m:
+                loop += float(m.group(1))
+                steps += int(m.group(3))
+                run_cpu = float(m.group(1)) * int(m.group(2))    # wall x ranks until its CPU use
+                cpu += run_cpu
+                cpu_by_step.append((steps, cpu))
+                continue
+            m = CPU_USE.match(line)
+            if m and cpu_by_step:    # the last loop's CPU use, printed after its loop time
+                cpu -= run_cpu * (1 - float(m.group(1)) / 100)
+                cpu_by_step[-1] = (steps, cpu)
+                continue
+            m = MEMORY.match(line)
+            if m:
+                memory = max(memory, float(m.group(1)))
+                continue
+            m = COMM.match(line)
+            if m:
+                comm += float(m.group(1))
+    return {"memory_mb": memory, "comm_share": comm / loop if loop > 0 else math.nan,
+            "ke_met": ke_met, "flight_met": flight_met,
+            "cpu_by_step": cpu_by_step}
+
+
+def cpu_to_step(cpu_by_step, step):
+    """the CPU time of a log's runs up to the step (linear within a run)"""
+    before = (0, 0.0)
+    for after in cpu_by_step:
+        if after[0] >= step:
+            if after[0] == before[0]:
+                return after[1]
+            return before[1] + (after[1] - before[1]) * (step - before[0]) / (after[0] - before[0])
+        before = after
+    return math.nan
 
 
 def load(run_dirs):
@@ -72,13 +101,14 @@ def load(run_dirs):
                                "log.lammps")
             if not os.path.exists(log):
                 continue
-            r["memory_mb"], r["comm_share"], r["ke_met"], r["flight_met"] = read_log(log)
+            r.update(read_log(log))
             rows.append(r)
     return rows
 
 
-def per_size(rows):
-    """{(N, ranks): medians over seeds}"""
+def per_size(rows, common_steps):
+    """{(N, ranks): medians over seeds}; "cpu_to_common": the CPU time to common_steps, the
+    same physical time at every N"""
     groups = {}
     for r in rows:
         groups.setdefault((int(r["N"]), int(r["np"])), []).append(r)
@@ -89,12 +119,16 @@ def per_size(rows):
         out[(n, ranks)] = {
             "seeds": len(g), "cpu_seconds": float(np.median(cpu)),
             "steps": float(np.median(steps)),
+            "cpu_to_common": float(np.median([cpu_to_step(r["cpu_by_step"], common_steps)
+                                              for r in g])),
             "us_per_particle_step": float(np.median(1e6 * cpu / (n * steps))),
             "contacts_per_particle_step": float(np.median(
                 [float(r["contacts"]) / (n * float(r["steps"])) for r in g])),
             "ke_met": float(np.median([r["ke_met"] for r in g])),
             "flight_met": float(np.median([r["flight_met"] for r in g])),
             "memory_mb_per_rank": max(r["memory_mb"] for r in g),
+            "peak_rss_mb": max((float(r["peak_rss_mb"]) for r in g if r.get("peak_rss_mb")),
+                               default=math.nan),    # rows before the column have none
             "kb_per_particle": 1024 * max(r["memory_mb"] for r in g) * ranks / n,
             "comm_share": float(np.median([r["comm_share"] for r in g]))}
     return out
@@ -130,26 +164,33 @@ def extrapolation(sizes, n=10 ** 6):
 
 
 def write(rows, results):
-    sizes = per_size(rows)
+    common = int(min(float(r["steps"]) for r in rows))
+    sizes = per_size(rows, common)
     one_rank = {s: v for s, v in sizes.items() if s[1] == 1}
-    lines = ["| N | ranks | seeds | CPU to deposit (s) | steps to rest | us per particle-step | "
-             "contacts per particle-step | KE below ketol at step | flight below flytol at "
-             "step | memory per rank (MB, LAMMPS's estimate) | kB per particle | comm share |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| N | ranks | seeds | CPU to deposit (s) | steps to rest | KE below ketol at step | "
+             "flight below flytol at step | CPU to step %d (s) | us per particle-step | "
+             "contacts per particle-step | memory per rank (MB, LAMMPS's estimate) | "
+             "kB per particle | peak resident set of the largest rank (MB) | comm share |"
+             % common,
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (n, ranks), v in sizes.items():
-        lines.append("| %d | %d | %d | %.0f | %.0f | %.2f | %.2f | %.0f | %.0f | %.1f | %.2f | "
-                     "%.3f |"
-                     % (n, ranks, v["seeds"], v["cpu_seconds"], v["steps"],
-                        v["us_per_particle_step"], v["contacts_per_particle_step"],
-                        v["ke_met"], v["flight_met"], v["memory_mb_per_rank"],
-                        v["kb_per_particle"], v["comm_share"]))
-    keys = ("cpu_seconds", "us_per_particle_step", "steps", "contacts_per_particle_step")
+        lines.append("| %d | %d | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.2f | %.2f | %.1f | "
+                     "%.2f | %.0f | %.3f |"
+                     % (n, ranks, v["seeds"], v["cpu_seconds"], v["steps"], v["ke_met"],
+                        v["flight_met"], v["cpu_to_common"], v["us_per_particle_step"],
+                        v["contacts_per_particle_step"], v["memory_mb_per_rank"],
+                        v["kb_per_particle"], v["peak_rss_mb"], v["comm_share"]))
+    keys = ("cpu_seconds", "steps", "us_per_particle_step", "cpu_to_common",
+            "contacts_per_particle_step")
     fits = {k: exponent(one_rank, k) for k in keys}
+    shown = {k: "-" if fits[k] is None else "%.3f" % fits[k] for k in keys}
     lines.append("")
     lines.append("Exponents in N at 1 rank (log-log least squares over %d sizes): CPU to deposit "
-                 "%s, time per particle-step %s, steps to rest %s, contacts per particle-step %s."
-                 % (len(one_rank), *("%.3f" % fits[k] if fits[k] is not None else "-"
-                                     for k in keys)))
+                 "%s = 1 + steps to rest %s + time per particle-step %s; CPU to step %d (the "
+                 "same physical time at every N) %s; contacts per particle-step %s."
+                 % (len(one_rank), shown["cpu_seconds"], shown["steps"],
+                    shown["us_per_particle_step"], common, shown["cpu_to_common"],
+                    shown["contacts_per_particle_step"]))
     lines.append("")
     lines.append(extrapolation(sizes))
     os.makedirs(results, exist_ok=True)

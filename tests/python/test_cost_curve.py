@@ -6,11 +6,12 @@ run's loop time, CPU use, section shares and contacts (the difference of cumulat
 import csv
 import math
 import os
+import subprocess
 import sys
 
 import pytest
 
-from conftest import root_dir
+from conftest import root_dir, subprocess_env
 
 sys.path.insert(0, os.path.join(root_dir(), "bench", "cost_curve"))
 import cost_table    # noqa: E402
@@ -22,6 +23,8 @@ PROGRESS step 2000 inserted {n} of {n} KE/particle 1e-2 target 1e-3 flight 3 tar
 PROGRESS step 3000 inserted {n} of {n} KE/particle 5e-4 target 1e-3 flight 2 target 1
 PROGRESS step 4000 inserted {n} of {n} KE/particle 2e-3 target 1e-3 flight 0.5 target 1
 Loop time of {loop1} on 1 procs for 1000 steps with {n} atoms
+
+50.0% CPU use with 1 MPI tasks x no OpenMP threads
 Comm    | 0.1        | {comm1}      | 0.3        |   0.0 |  5.00
 Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 1.5 Mbytes
 Loop time of {loop2} on 1 procs for 1000 steps with {n} atoms
@@ -30,20 +33,23 @@ Comm    | 0.1        | {comm2}      | 0.3        |   0.0 |  5.00
 
 
 def make_runs(folder):
-    """N = 1000, 4000, 16000 with CPU exactly linear in N (1 us per particle-step at 20 000
-    steps), two seeds each (CPU +-10 %), memory 2 kB per particle"""
+    """N = 1000, 4000, 16000 with CPU exactly linear in N (1 us per particle-step at 2000
+    steps), two seeds each (CPU +-10 %), memory 2 kB per particle; the logs' two runs of 1000
+    steps take 3 and 1 ms of wall time per particle, the first at 50 % CPU use"""
     rows = []
     for n in (1000, 4000, 16000):
         for seed, f in ((1, 0.9), (2, 1.1)):
             rows.append({"setting": "default", "seed": seed, "N": n, "np": 1,
-                         "cpu_seconds": f * n * 20000 * 1e-6, "steps": 20000,
-                         "contacts": 2.5 * n * 20000})
+                         "cpu_seconds": f * n * 2000 * 1e-6, "steps": 2000,
+                         "contacts": 2.5 * n * 2000,
+                         "peak_rss_mb": "" if seed == 1 else 0.004 * n})
             run = folder / ("default-N%d-s%d" % (n, seed))
             run.mkdir()
-            (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, loop1=3.0,
-                                                       loop2=1.0, comm1=0.2, comm2=0.2))
+            (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, loop1=3e-3 * n,
+                                                       loop2=1e-3 * n, comm1=4e-4 * n,
+                                                       comm2=0))
     rows.append({"setting": "fast", "seed": 1, "N": 1000, "np": 1, "cpu_seconds": 1.0,
-                 "steps": 1, "contacts": 1})    # another setting: left out
+                 "steps": 1, "contacts": 1, "peak_rss_mb": 1})    # another setting: left out
     with open(folder / "rows.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -55,20 +61,28 @@ def test_cost_table_by_hand(tmp_path):
     sizes, fits = cost_table.write(cost_table.load([str(tmp_path)]), str(tmp_path / "out"))
     assert sorted(sizes) == [(1000, 1), (4000, 1), (16000, 1)]
     for (n, _), v in sizes.items():
-        assert v["seeds"] == 2 and v["steps"] == 20000
-        assert v["cpu_seconds"] == pytest.approx(n * 0.02)    # the median of 0.9 and 1.1
+        assert v["seeds"] == 2 and v["steps"] == 2000
+        assert v["cpu_seconds"] == pytest.approx(n * 0.002)    # the median of 0.9 and 1.1
         assert v["us_per_particle_step"] == pytest.approx(1.0)
         assert v["kb_per_particle"] == pytest.approx(2.0)
         assert v["comm_share"] == pytest.approx(0.4 / 4.0)    # summed over the log's runs
+        assert v["cpu_to_common"] == pytest.approx(2.5e-3 * n)    # 3 x 50 % + 1 ms
+        assert v["peak_rss_mb"] == pytest.approx(0.004 * n)    # seed 1's row has none
         assert v["contacts_per_particle_step"] == pytest.approx(2.5)
         # step 1000 had flight below flytol but not all particles in; KE held first at 3000
         assert (v["ke_met"], v["flight_met"]) == (3000, 4000)
     assert fits["cpu_seconds"] == pytest.approx(1.0)
     assert fits["us_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
     assert fits["contacts_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
+    assert fits["cpu_to_common"] == pytest.approx(1.0)
+    by_step = cost_table.read_log(str(tmp_path / "default-N1000-s1" / "log.lammps"))["cpu_by_step"]
+    assert by_step == pytest.approx([(1000, 1.5), (2000, 2.5)])
+    assert cost_table.cpu_to_step(by_step, 1500) == pytest.approx(2.0)    # linear within a run
+    assert cost_table.cpu_to_step(by_step, 500) == pytest.approx(0.75)
+    assert math.isnan(cost_table.cpu_to_step(by_step, 2001))    # beyond the log
     assert os.path.getsize(tmp_path / "out" / "cost_curve.png") > 5000
-    assert "| 16000 | 1 | 2 | 320 | 20000 | 1.00 | 2.50 | 3000 | 4000 |" in (tmp_path / "out" / "table.md").read_text()
-    assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))[1])    # no loop time
+    assert "| 16000 | 1 | 2 | 32 | 2000 | 3000 | 4000 | 40 | 1.00 | 2.50 | 31.2 | 2.00 | 64 | 0.100 |" in (tmp_path / "out" / "table.md").read_text()
+    assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))["comm_share"])    # no loop
 
 
 REPLICATE_LOG = """Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 12.5 Mbytes
@@ -105,15 +119,40 @@ def test_replicate_log_and_table(tmp_path):
         assert run["shares"] == pytest.approx({"Pair": 0.75, "Neigh": 0.0, "Comm": 0.10,
                                                "Output": 0.0, "Modify": 0.145, "Other": 0.005})
         cpu = loop * 0.9 * 2
-        rows.append({"k": k, "N": n, "np": 2, "us_per_particle_step": 1e6 * cpu / (n * 500),
-                     "contacts_per_particle_step": 3.0,
-                     "ns_per_contact_step": 1e9 * cpu * 0.75 / (1500 * n),
-                     "share_pair": 0.75, "share_neigh": 0, "share_comm": 0.1,
-                     "share_modify": 0.145, "share_other": 0.005,
-                     "kb_per_particle": 1024 * 25 * 2 / n})
+        for repeat, f in enumerate((1.0, 1.2, 0.8)):    # the median is the first
+            row = {"k": k, "N": n, "np": 2, "repeat": repeat,
+                   "us_per_particle_step": f * 1e6 * cpu / (n * 500),
+                   "contacts_per_particle_step": 3.0,
+                   "ns_per_contact_step": f * 1e9 * cpu * 0.75 / (1500 * n),
+                   "share_pair": 0.75, "share_neigh": 0, "share_comm": 0.1,
+                   "share_modify": 0.145, "share_output": 0, "share_other": 0.005,
+                   "kb_per_particle": 1024 * 25 * 2 / n}
+            row.update({m: row.get(m, 0) for m in run_replicate.MEASURES})
+            rows.append(row)
     table = run_replicate.write_table(rows, str(tmp_path))
-    assert "| 1 x 1 | 1000 | 2 | 3.600 | 3.000 | 900 | 0.750 |" in table
-    assert "at 2 ranks (log-log least squares over 2 sizes): 0.500." in table
+    assert "| 1 x 1 | 1000 | 2 | 3 | 3.600 | 1.50 | 3.000 | 900 | 0.750 |" in table
+    assert "at 2 ranks (log-log least squares over 2 sizes' medians): 0.500." in table
     with pytest.raises(ValueError):    # a log without a measured run
         (tmp_path / "empty").write_text("LAMMPS\n")
         run_replicate.read_log(str(tmp_path / "empty"))
+
+
+def test_replicate_copies_a_saved_deposit(tmp_path):
+    """in.replicate on a tiny in.deposit run saved with its contacts' histories (which
+    LAMMPS's replicate refuses: hence the data file): the 2 x 2 copy holds 4 times the
+    particles, and, each copy being the deposit shifted by a box edge, the same contacts per
+    particle-step as the deposit itself"""
+    env = subprocess_env()
+    deposit = tmp_path / "deposit"
+    deposit.mkdir()
+    subprocess.run([env["ELLIPSOID_DEP_LMP"], "-in", os.path.join(root_dir(), "examples",
+                    "deposit", "in.deposit"), "-log", str(deposit / "log.lammps"), "-screen",
+                    "none", "-nocite", "-var", "N", "40", "-var", "chunk", "2000", "-var",
+                    "maxchunks", "8", "-var", "image", "0", "-var", "save", "1", "-var", "out",
+                    str(deposit)], check=True, env=env)
+    rows = {k: run_replicate.measure(str(deposit / "deposit.restart"), k, 1, 20, 50,
+                                     str(tmp_path / ("k%d" % k))) for k in (1, 2)}
+    assert (rows[1]["N"], rows[2]["N"]) == (40, 160)
+    assert rows[1]["steps"] == rows[2]["steps"] == 50
+    assert rows[1]["contacts_per_particle_step"] > 0.5    # the particles lie on each other
+    assert rows[2]["contacts_per_particle_step"] == rows[1]["contacts_per_particle_step"]
