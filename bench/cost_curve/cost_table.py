@@ -29,6 +29,9 @@ CPU_USE = re.compile(r"^(\S+)% CPU use with")
 COMM = re.compile(r"^Comm\s+\|\s*\S+\s*\|\s*(\S+)\s*\|")
 # in.deposit's check after each chunk: the step, the inserted count, KE/particle against ketol
 # and the largest v^2/2gd against flytol
+BOX = re.compile(r"orthogonal box = \(\S+ \S+ \S+\) to \((\S+) (\S+) \S+\)")
+GRID = re.compile(r"^\s*(\d+) by (\d+) by (\d+) MPI processor grid")
+ATOMS = re.compile(r"^(Nlocal|Nghost):\s+(\S+) ave")
 PROGRESS = re.compile(r"^PROGRESS step (\d+) inserted (\S+) of (\d+) KE/particle (\S+) "
                       r"target (\S+) flight (\S+) target (\S+)")
 
@@ -37,12 +40,14 @@ def read_log(path):
     """what a deposit's LAMMPS log says of its cost: the largest memory estimate per rank in
     MB ("memory_mb"), the communication's share of the summed loop time ("comm_share"), the
     first checked steps after which all particles were in and KE/particle was below ketol
-    ("ke_met") and after which the largest v^2/2gd was below flytol ("flight_met"), and the
+    ("ke_met") and after which the largest v^2/2gd was below flytol ("flight_met"), the
     CPU time of the runs so far after each run, [(steps, CPU seconds)] ("cpu_by_step": loop
-    time x CPU use x ranks)"""
+    time x CPU use x ranks), the ghosts per owned atom after the last run ("ghost_ratio"),
+    the box's edges in x and y ("box") and the ranks along them ("grid")"""
     memory, loop, comm = 0.0, 0.0, 0.0
     ke_met, flight_met = math.nan, math.nan
     steps, cpu, cpu_by_step = 0, 0.0, []
+    atoms, box, grid = {}, None, None
     with open(path) as f:
         for line in f:
             p = PROGRESS.match(line)
@@ -70,12 +75,25 @@ def read_log(path):
             if m:
                 memory = max(memory, float(m.group(1)))
                 continue
+            m = ATOMS.match(line)
+            if m:
+                atoms[m.group(1)] = float(m.group(2))
+                continue
+            m = BOX.search(line)
+            if m:
+                box = (float(m.group(1)), float(m.group(2)))
+                continue
+            m = GRID.match(line)
+            if m:
+                grid = (int(m.group(1)), int(m.group(2)))
+                continue
             m = COMM.match(line)
             if m:
                 comm += float(m.group(1))
     return {"memory_mb": memory, "comm_share": comm / loop if loop > 0 else math.nan,
             "ke_met": ke_met, "flight_met": flight_met,
-            "cpu_by_step": cpu_by_step}
+            "cpu_by_step": cpu_by_step, "box": box, "grid": grid,
+            "ghost_ratio": atoms["Nghost"] / atoms["Nlocal"] if atoms.get("Nlocal") else math.nan}
 
 
 def cpu_to_step(cpu_by_step, step):
@@ -130,7 +148,9 @@ def per_size(rows, common_steps):
             "peak_rss_mb": max((float(r["peak_rss_mb"]) for r in g if r.get("peak_rss_mb")),
                                default=math.nan),    # rows before the column have none
             "kb_per_particle": 1024 * max(r["memory_mb"] for r in g) * ranks / n,
-            "comm_share": float(np.median([r["comm_share"] for r in g]))}
+            "comm_share": float(np.median([r["comm_share"] for r in g])),
+            "ghost_ratio": float(np.median([r["ghost_ratio"] for r in g])),
+            "box": g[0]["box"], "grid": g[0]["grid"]}
     return out
 
 
@@ -143,24 +163,67 @@ def exponent(sizes, key):
     return float(np.polyfit(np.log(n), np.log(y), 1)[0])
 
 
-def extrapolation(sizes, n=10 ** 6):
-    """a deposit of n particles from the largest measured N at 1 rank: its time per
-    particle-step and steps to rest (the height does not change), perfect division over the
-    cores; its memory from the memory per particle"""
-    largest = max((s for s in sizes if s[1] == 1), default=None)
-    if largest is None:
+def ghost_width(ratio, a, b):
+    """the ghost shell's width w from the ghosts per owned atom of an a x b subdomain with
+    ghosts on its four sides in x and y (none in z): (a + 2w)(b + 2w) = (1 + ratio) a b"""
+    return (-(a + b) + math.sqrt((a + b) ** 2 + 4 * ratio * a * b)) / 4
+
+
+def ghost_ratio(w, a, b):
+    """the ghosts per owned atom of an a x b subdomain with a ghost shell of width w"""
+    return ((a + 2 * w) * (b + 2 * w) - a * b) / (a * b)
+
+
+def rank_grid(p):
+    """processors * * 1 on a square box: the ranks along x and y, as near a square as p has"""
+    py = max(d for d in range(1, int(math.isqrt(p)) + 1) if p % d == 0)
+    return p // py, py
+
+
+def extrapolate(sizes, steps_exponent, n=10 ** 6, cores=(2, 64)):
+    """a deposit of n particles on each number of cores, from the largest N measured on
+    several ranks (else on one): the CPU time per particle-step with its communication share
+    scaled by the ghosts per owned atom of the new subdomains (the ghost shell's width from the
+    measured ratio), the steps to rest from the fitted exponent. None without a box and grid;
+    else {"base": (N, ranks), "width", "steps", "cores": {p: (grid, ghost ratio, us per
+    particle-step, hours)}}"""
+    base = max(sizes, key=lambda s: (s[1] > 1, s[0]), default=None)
+    if base is None or sizes[base]["box"] is None or sizes[base]["grid"] is None:
+        return None
+    v = sizes[base]
+    (lx, ly), (px, py) = v["box"], v["grid"]
+    w = ghost_width(v["ghost_ratio"], lx / px, ly / py)
+    steps = v["steps"] * (n / base[0]) ** (steps_exponent or 0.0)
+    scale = math.sqrt(n / base[0])    # the box's edge grows as sqrt(N)
+    out = {"base": base, "width": w, "steps": steps, "cores": {}}
+    for p in cores:
+        grid = rank_grid(p)
+        g = ghost_ratio(w, scale * lx / grid[0], scale * ly / grid[1])
+        t = v["us_per_particle_step"] * (1 - v["comm_share"] +
+                                          v["comm_share"] * g / v["ghost_ratio"])
+        out["cores"][p] = (grid, g, t, t * 1e-6 * n * steps / p / 3600)
+    return out
+
+
+def extrapolation(sizes, steps_exponent, n=10 ** 6):
+    """extrapolate()'s answer in words"""
+    e = extrapolate(sizes, steps_exponent, n)
+    if e is None:
         return ""
-    v = sizes[largest]
-    cpu_hours = v["us_per_particle_step"] * 1e-6 * n * v["steps"] / 3600
-    return ("A deposit of %.0e particles from N = %d's %.2f us per particle-step and %.0f steps: "
-            "%.0f CPU-hours, %.1f hours on 2 cores and %.1f minutes on 64 at perfect division "
-            "(an upper bound on the speed: the communication's share at 1 rank was %.3f, the "
-            "exchange of ghosts across the periodic images; on p ranks each rank's subdomain "
-            "shrinks as 1/sqrt(p) in x and y, so its ghost shell's share grows as sqrt(p)); "
-            "LAMMPS's memory estimate %.1f GB in all (%.1f kB per particle)."
-            % (n, largest[0], v["us_per_particle_step"], v["steps"], cpu_hours, cpu_hours / 2,
-               60 * cpu_hours / 64, v["comm_share"], v["kb_per_particle"] * n / 1024 ** 2,
-               v["kb_per_particle"]))
+    v = sizes[e["base"]]
+    parts = ["on %d cores (%d x %d ranks, %.2f ghosts per owned particle) %.2f us per "
+             "particle-step, %.1f hours" % (p, grid[0], grid[1], g, t, hours)
+             for p, (grid, g, t, hours) in e["cores"].items()]
+    return ("A deposit of %.0e particles, from N = %d on %d rank%s (%.2f us per particle-step, "
+            "communication %.3f of the loop at %.2f ghosts per owned particle: a ghost shell "
+            "%.2f d wide) and %.0f steps to rest (%.0f steps times (%.0e / %d)^%.3f, the fitted "
+            "exponent): %s; LAMMPS's memory estimate %.1f GB in all (%.1f kB per particle). "
+            "The communication's time is taken as proportional to the ghosts (no latency, no "
+            "load imbalance): a lower bound on the time."
+            % (n, e["base"][0], e["base"][1], "s" if e["base"][1] > 1 else "",
+               v["us_per_particle_step"], v["comm_share"], v["ghost_ratio"], e["width"],
+               e["steps"], v["steps"], n, e["base"][0], steps_exponent or 0.0,
+               "; ".join(parts), v["kb_per_particle"] * n / 1024 ** 2, v["kb_per_particle"]))
 
 
 def write(rows, results):
@@ -192,7 +255,7 @@ def write(rows, results):
                     shown["us_per_particle_step"], common, shown["cpu_to_common"],
                     shown["contacts_per_particle_step"]))
     lines.append("")
-    lines.append(extrapolation(sizes))
+    lines.append(extrapolation(sizes, fits["steps"]))
     os.makedirs(results, exist_ok=True)
     with open(os.path.join(results, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -17,7 +17,9 @@ sys.path.insert(0, os.path.join(root_dir(), "bench", "cost_curve"))
 import cost_table    # noqa: E402
 import run_replicate    # noqa: E402
 
-LOG = """Per MPI rank memory allocation (min/avg/max) = 10 | 11 | {mem} Mbytes
+LOG = """Created orthogonal box = (0 0 0) to (4.5 4.5 20)
+  1 by 1 by 1 MPI processor grid
+Per MPI rank memory allocation (min/avg/max) = 10 | 11 | {mem} Mbytes
 PROGRESS step 1000 inserted 10 of {n} KE/particle 1e-2 target 1e-3 flight 0.5 target 1
 PROGRESS step 2000 inserted {n} of {n} KE/particle 1e-2 target 1e-3 flight 3 target 1
 PROGRESS step 3000 inserted {n} of {n} KE/particle 5e-4 target 1e-3 flight 2 target 1
@@ -29,6 +31,8 @@ Comm    | 0.1        | {comm1}      | 0.3        |   0.0 |  5.00
 Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 1.5 Mbytes
 Loop time of {loop2} on 1 procs for 1000 steps with {n} atoms
 Comm    | 0.1        | {comm2}      | 0.3        |   0.0 |  5.00
+Nlocal:           {n} ave        {n} max        {n} min
+Nghost:           {ghosts} ave        {ghosts} max        {ghosts} min
 """
 
 
@@ -45,7 +49,8 @@ def make_runs(folder):
                          "peak_rss_mb": "" if seed == 1 else 0.004 * n})
             run = folder / ("default-N%d-s%d" % (n, seed))
             run.mkdir()
-            (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, loop1=3e-3 * n,
+            (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, ghosts=n // 2,
+                                                       loop1=3e-3 * n,
                                                        loop2=1e-3 * n, comm1=4e-4 * n,
                                                        comm2=0))
     rows.append({"setting": "fast", "seed": 1, "N": 1000, "np": 1, "cpu_seconds": 1.0,
@@ -83,6 +88,30 @@ def test_cost_table_by_hand(tmp_path):
     assert os.path.getsize(tmp_path / "out" / "cost_curve.png") > 5000
     assert "| 16000 | 1 | 2 | 32 | 2000 | 3000 | 4000 | 40 | 1.00 | 2.50 | 31.2 | 2.00 | 64 | 0.100 |" in (tmp_path / "out" / "table.md").read_text()
     assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))["comm_share"])    # no loop
+
+
+def test_extrapolation_by_hand(tmp_path):
+    """the ghost shell from the measured ghosts per atom and back; a deposit of 16 x 16000
+    particles from N = 16000 on 1 rank (box 4.5 x 4.5 in the logs, 0.5 ghosts per atom,
+    communication 0.1 of the loop): its box 4 times as wide, so on 16 ranks (4 x 4) each rank's
+    subdomain is the measured box, with the measured ghosts and time per particle-step"""
+    for a, b, w in ((4.5, 4.5, 0.3), (10.0, 3.0, 1.7)):
+        assert cost_table.ghost_width(cost_table.ghost_ratio(w, a, b), a, b) == pytest.approx(w)
+    assert [cost_table.rank_grid(p) for p in (1, 2, 6, 16, 64)] == \
+        [(1, 1), (2, 1), (3, 2), (4, 4), (8, 8)]
+    make_runs(tmp_path)
+    sizes = cost_table.per_size(cost_table.load([str(tmp_path)]), 2000)
+    assert sizes[(16000, 1)]["ghost_ratio"] == 0.5 and sizes[(16000, 1)]["box"] == (4.5, 4.5)
+    e = cost_table.extrapolate(sizes, 0.1, n=16 * 16000, cores=(1, 16))
+    assert e["base"] == (16000, 1) and e["steps"] == pytest.approx(2000 * 16 ** 0.1)
+    grid, g, t, hours = e["cores"][16]
+    assert grid == (4, 4) and g == pytest.approx(0.5) and t == pytest.approx(1.0)
+    assert hours == pytest.approx(1e-6 * 16 * 16000 * e["steps"] / 16 / 3600)
+    w = e["width"]    # (4.5 + 2w)^2 = 1.5 x 4.5^2
+    assert w == pytest.approx((math.sqrt(1.5) - 1) * 4.5 / 2)
+    grid, g, t, _ = e["cores"][1]    # one rank holds the whole 18 x 18 box
+    assert grid == (1, 1) and g == pytest.approx(((18 + 2 * w) ** 2 - 18 ** 2) / 18 ** 2)
+    assert t == pytest.approx(0.9 + 0.1 * g / 0.5)
 
 
 REPLICATE_LOG = """Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 12.5 Mbytes
