@@ -14,6 +14,7 @@ import pytest
 from conftest import root_dir, subprocess_env
 
 sys.path.insert(0, os.path.join(root_dir(), "bench", "cost_curve"))
+import cachegrind_replicate    # noqa: E402
 import cost_table    # noqa: E402
 import run_replicate    # noqa: E402
 
@@ -185,3 +186,37 @@ def test_replicate_copies_a_saved_deposit(tmp_path):
     assert rows[1]["steps"] == rows[2]["steps"] == 50
     assert rows[1]["contacts_per_particle_step"] > 0.5    # the particles lie on each other
     assert rows[2]["contacts_per_particle_step"] == rows[1]["contacts_per_particle_step"]
+
+
+CACHEGRIND_OUT = """desc: I1 cache:         65536 B, 64 B, 4-way associative
+desc: D1 cache:         49152 B, 64 B, 12-way associative
+desc: LL cache:         {ll} B, 64 B, 16-way associative
+cmd: lmp -in in.replicate
+events: Ir I1mr ILmr Dr D1mr DLmr Dw D1mw DLmw
+fl=a.cpp
+fn=f
+1 5 0 0 1 0 0 1 0 0
+summary: {ir} 10 5 {dr} {d1mr} {dlmr} {dw} {d1mw} {dlmw}
+"""
+
+
+def test_cachegrind_counts_per_particle_step(tmp_path):
+    """the totals and caches of a cachegrind file, and the per particle-step difference of a
+    run of 2 x 50 steps and one of 50 (the set-up cancels)"""
+    counts = {}
+    for name, steps in (("short", 50), ("long", 100)):
+        path = tmp_path / name
+        # set-up: 1e6 instructions, 1000 D1 and 100 LL misses; each particle-step 2000
+        # instructions, 30 + 10 D1 misses and 0.5 + 0.25 LL misses; 160 particles
+        ps = 160 * steps
+        path.write_text(CACHEGRIND_OUT.format(
+            ll=2 ** 25, ir=10 ** 6 + 2000 * ps, dr=500, d1mr=1000 + 30 * ps,
+            dlmr=100 + ps // 2, dw=400, d1mw=10 * ps, dlmw=ps // 4))
+        counts[name], caches = cachegrind_replicate.read_counts(str(path))
+    assert counts["short"]["Ir"] == 10 ** 6 + 2000 * 160 * 50 and counts["short"]["I1mr"] == 10
+    assert caches[2] == "LL cache:         33554432 B, 64 B, 16-way associative"
+    c = cachegrind_replicate.per_particle_step(counts["short"], counts["long"], 160, 50)
+    assert c == pytest.approx({"instructions": 2000, "d1_misses": 40, "ll_data_misses": 0.75})
+    (tmp_path / "none").write_text("events: Ir\n")
+    with pytest.raises(ValueError):
+        cachegrind_replicate.read_counts(str(tmp_path / "none"))
