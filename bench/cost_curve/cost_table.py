@@ -22,6 +22,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from bench_rows import read_rows  # noqa: E402
+from run_replicate import medians  # noqa: E402
 
 MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
 LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps")
@@ -226,7 +227,9 @@ def extrapolation(sizes, steps_exponent, n=10 ** 6):
                "; ".join(parts), v["kb_per_particle"] * n / 1024 ** 2, v["kb_per_particle"]))
 
 
-def write(rows, results):
+def write(rows, results, at_rest=None):
+    """table.md and cost_curve.png in results; at_rest: run_replicate.medians() of the
+    replicated deposit, drawn beside the whole deposits' time per particle-step"""
     common = int(min(float(r["steps"]) for r in rows))
     sizes = per_size(rows, common)
     one_rank = {s: v for s, v in sizes.items() if s[1] == 1}
@@ -259,11 +262,11 @@ def write(rows, results):
     os.makedirs(results, exist_ok=True)
     with open(os.path.join(results, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    plot(sizes, os.path.join(results, "cost_curve.png"))
+    plot(sizes, os.path.join(results, "cost_curve.png"), at_rest)
     return sizes, fits
 
 
-def plot(sizes, path):
+def plot(sizes, path, at_rest=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -273,7 +276,12 @@ def plot(sizes, path):
         n = [s[0] for s in pts]
         axes[0].loglog(n, [sizes[s]["cpu_seconds"] for s in pts], "o-",
                        label="%d rank%s" % (ranks, "s" if ranks > 1 else ""))
-        axes[1].semilogx(n, [sizes[s]["us_per_particle_step"] for s in pts], "o-")
+        axes[1].semilogx(n, [sizes[s]["us_per_particle_step"] for s in pts], "o-",
+                         label="whole deposit, %d rank%s" % (ranks, "s" if ranks > 1 else ""))
+    for ranks in sorted({m["np"] for m in at_rest or []}):
+        pts = sorted((m["N"], m["us_per_particle_step"]) for m in at_rest if m["np"] == ranks)
+        axes[1].semilogx(*zip(*pts), "s--", label="at rest, one deposit copied k x k, %d rank%s"
+                         % (ranks, "s" if ranks > 1 else ""))
     n = np.array(sorted({s[0] for s in sizes}), float)
     first = sizes[min(sizes)]
     axes[0].loglog(n, first["cpu_seconds"] * n / n[0], "k:", label="linear in N")
@@ -283,6 +291,7 @@ def plot(sizes, path):
     axes[1].set_xlabel("N")
     axes[1].set_ylabel("CPU per particle-step (us)")
     axes[1].set_ylim(bottom=0)
+    axes[1].legend(fontsize=8)
     fig.suptitle("the default deposit (eta 1.4, zeta 1.8, delta_r 0.6) against N; medians over "
                  "seeds", fontsize=10)
     fig.tight_layout()
@@ -295,11 +304,18 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="run folders of run_accuracy.py (rows.csv, logs)")
     ap.add_argument("--results", required=True)
+    ap.add_argument("--replicate", help="rows.csv of run_replicate.py: the time per "
+                    "particle-step at rest drawn beside the whole deposits'")
     args = ap.parse_args(argv)
     rows = load(args.runs)
     if not rows:
         sys.exit("cost_table: no default-setting rows with their logs in %s" % args.runs)
-    sizes, fits = write(rows, args.results)
+    at_rest = None
+    if args.replicate:
+        if not os.path.isfile(args.replicate):
+            sys.exit("cost_table: --replicate %s: no such file" % args.replicate)
+        at_rest = medians(read_rows(args.replicate))
+    write(rows, args.results, at_rest)
     print(open(os.path.join(args.results, "table.md")).read())
 
 

@@ -64,7 +64,9 @@ def make_runs(folder):
 
 def test_cost_table_by_hand(tmp_path):
     make_runs(tmp_path)
-    sizes, fits = cost_table.write(cost_table.load([str(tmp_path)]), str(tmp_path / "out"))
+    at_rest = [{"np": 1, "N": n, "us_per_particle_step": 2.0} for n in (1000, 64000)]
+    sizes, fits = cost_table.write(cost_table.load([str(tmp_path)]), str(tmp_path / "out"),
+                                   at_rest)
     assert sorted(sizes) == [(1000, 1), (4000, 1), (16000, 1)]
     for (n, _), v in sizes.items():
         assert v["seeds"] == 2 and v["steps"] == 2000
