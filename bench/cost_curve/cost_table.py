@@ -151,7 +151,8 @@ def per_size(rows, common_steps):
             "kb_per_particle": 1024 * max(r["memory_mb"] for r in g) * ranks / n,
             "comm_share": float(np.median([r["comm_share"] for r in g])),
             "ghost_ratio": float(np.median([r["ghost_ratio"] for r in g])),
-            "box": g[0]["box"], "grid": g[0]["grid"]}
+            "box": g[0]["box"], "grid": g[0]["grid"],
+            "cpu_by_step": g[0]["cpu_by_step"]}    # the first seed's, for the plot
     return out
 
 
@@ -270,7 +271,7 @@ def plot(sizes, path, at_rest=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
     for ranks in sorted({s[1] for s in sizes}):
         pts = sorted(s for s in sizes if s[1] == ranks)
         n = [s[0] for s in pts]
@@ -292,6 +293,17 @@ def plot(sizes, path, at_rest=None):
     axes[1].set_ylabel("CPU per particle-step (us)")
     axes[1].set_ylim(bottom=0)
     axes[1].legend(fontsize=8)
+    for (n, ranks), v in sizes.items():    # CPU per particle-step of each run (chunk)
+        steps, cpu = zip(*[(0, 0.0)] + list(v["cpu_by_step"]))
+        per = [1e6 * (cpu[i] - cpu[i - 1]) / (n * (steps[i] - steps[i - 1]))
+               for i in range(1, len(steps)) if steps[i] > steps[i - 1]]
+        at = [steps[i] for i in range(1, len(steps)) if steps[i] > steps[i - 1]]
+        axes[2].plot(at, per, "-", lw=1, label="N = %d, %d rank%s"
+                     % (n, ranks, "s" if ranks > 1 else ""))
+    axes[2].set_xlabel("step")
+    axes[2].set_ylabel("CPU per particle-step in each chunk (us)")
+    axes[2].set_ylim(bottom=0)
+    axes[2].legend(fontsize=8)
     fig.suptitle("the default deposit (eta 1.4, zeta 1.8, delta_r 0.6) against N; medians over "
                  "seeds", fontsize=10)
     fig.tight_layout()
