@@ -242,11 +242,13 @@ def write(rows, results, at_rest=None):
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (n, ranks), v in sizes.items():
         lines.append("| %d | %d | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.2f | %.2f | %.1f | "
-                     "%.2f | %.0f | %.3f |"
+                     "%.2f | %s | %.3f |"
                      % (n, ranks, v["seeds"], v["cpu_seconds"], v["steps"], v["ke_met"],
                         v["flight_met"], v["cpu_to_common"], v["us_per_particle_step"],
                         v["contacts_per_particle_step"], v["memory_mb_per_rank"],
-                        v["kb_per_particle"], v["peak_rss_mb"], v["comm_share"]))
+                        v["kb_per_particle"],
+                        "-" if math.isnan(v["peak_rss_mb"]) else "%.0f" % v["peak_rss_mb"],
+                        v["comm_share"]))
     keys = ("cpu_seconds", "steps", "us_per_particle_step", "cpu_to_common",
             "contacts_per_particle_step")
     fits = {k: exponent(one_rank, k) for k in keys}
