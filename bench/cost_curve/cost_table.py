@@ -182,6 +182,12 @@ def rank_grid(p):
     return p // py, py
 
 
+def base_size(sizes):
+    """the (N, ranks) the extrapolation starts from: the largest N measured on several ranks,
+    else on one"""
+    return max(sizes, key=lambda s: (s[1] > 1, s[0]), default=None)
+
+
 def extrapolate(sizes, steps_exponent, n=10 ** 6, cores=(2, 64)):
     """a deposit of n particles on each number of cores, from the largest N measured on
     several ranks (else on one): the CPU time per particle-step with its communication share
@@ -189,7 +195,7 @@ def extrapolate(sizes, steps_exponent, n=10 ** 6, cores=(2, 64)):
     measured ratio), the steps to rest from the fitted exponent. None without a box and grid;
     else {"base": (N, ranks), "width", "steps", "cores": {p: (grid, ghost ratio, us per
     particle-step, hours)}}"""
-    base = max(sizes, key=lambda s: (s[1] > 1, s[0]), default=None)
+    base = base_size(sizes)
     if base is None or sizes[base]["box"] is None or sizes[base]["grid"] is None:
         return None
     v = sizes[base]
@@ -233,7 +239,6 @@ def write(rows, results, at_rest=None):
     replicated deposit, drawn beside the whole deposits' time per particle-step"""
     common = int(min(float(r["steps"]) for r in rows))
     sizes = per_size(rows, common)
-    one_rank = {s: v for s, v in sizes.items() if s[1] == 1}
     lines = ["| N | ranks | seeds | CPU to deposit (s) | steps to rest | KE below ketol at step | "
              "flight below flytol at step | CPU to step %d (s) | us per particle-step | "
              "contacts per particle-step | memory per rank (MB, LAMMPS's estimate) | "
@@ -251,17 +256,21 @@ def write(rows, results, at_rest=None):
                         v["comm_share"]))
     keys = ("cpu_seconds", "steps", "us_per_particle_step", "cpu_to_common",
             "contacts_per_particle_step")
-    fits = {k: exponent(one_rank, k) for k in keys}
-    shown = {k: "-" if fits[k] is None else "%.3f" % fits[k] for k in keys}
+    fits = {}    # {ranks: {key: exponent}}, one fit per rank count
+    for ranks in sorted({s[1] for s in sizes}):
+        same = {s: v for s, v in sizes.items() if s[1] == ranks}
+        fits[ranks] = {k: exponent(same, k) for k in keys}
+        shown = {k: "-" if fits[ranks][k] is None else "%.3f" % fits[ranks][k] for k in keys}
+        lines.append("")
+        lines.append("Exponents in N at %d rank%s (log-log least squares over %d sizes): CPU to "
+                     "deposit %s = 1 + steps to rest %s + time per particle-step %s; CPU to "
+                     "step %d (the same physical time at every N) %s; contacts per "
+                     "particle-step %s."
+                     % (ranks, "s" if ranks > 1 else "", len(same), shown["cpu_seconds"],
+                        shown["steps"], shown["us_per_particle_step"], common,
+                        shown["cpu_to_common"], shown["contacts_per_particle_step"]))
     lines.append("")
-    lines.append("Exponents in N at 1 rank (log-log least squares over %d sizes): CPU to deposit "
-                 "%s = 1 + steps to rest %s + time per particle-step %s; CPU to step %d (the "
-                 "same physical time at every N) %s; contacts per particle-step %s."
-                 % (len(one_rank), shown["cpu_seconds"], shown["steps"],
-                    shown["us_per_particle_step"], common, shown["cpu_to_common"],
-                    shown["contacts_per_particle_step"]))
-    lines.append("")
-    lines.append(extrapolation(sizes, fits["steps"]))
+    lines.append(extrapolation(sizes, fits[base_size(sizes)[1]]["steps"]))
     os.makedirs(results, exist_ok=True)
     with open(os.path.join(results, "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

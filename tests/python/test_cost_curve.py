@@ -37,15 +37,17 @@ Nghost:           {ghosts} ave        {ghosts} max        {ghosts} min
 """
 
 
-def make_runs(folder):
+def make_runs(folder, ranks=1, power=1.0):
     """N = 1000, 4000, 16000 with CPU exactly linear in N (1 us per particle-step at 2000
-    steps), two seeds each (CPU +-10 %), memory 2 kB per particle; the logs' two runs of 1000
-    steps take 3 and 1 ms of wall time per particle, the first at 50 % CPU use"""
+    steps; as N^power with another power), two seeds each (CPU +-10 %), memory 2 kB per
+    particle; the logs' two runs of 1000 steps take 3 and 1 ms of wall time per particle, the
+    first at 50 % CPU use"""
     rows = []
     for n in (1000, 4000, 16000):
         for seed, f in ((1, 0.9), (2, 1.1)):
-            rows.append({"setting": "default", "seed": seed, "N": n, "np": 1,
-                         "cpu_seconds": f * n * 2000 * 1e-6, "steps": 2000,
+            rows.append({"setting": "default", "seed": seed, "N": n, "np": ranks,
+                         "cpu_seconds": f * n * 2000 * 1e-6 * (n / 1000) ** (power - 1),
+                         "steps": 2000,
                          "contacts": 2.5 * n * 2000,
                          "peak_rss_mb": "" if seed == 1 or n == 1000 else 0.004 * n})
             run = folder / ("default-N%d-s%d" % (n, seed))
@@ -82,10 +84,11 @@ def test_cost_table_by_hand(tmp_path):
         assert v["contacts_per_particle_step"] == pytest.approx(2.5)
         # step 1000 had flight below flytol but not all particles in; KE held first at 3000
         assert (v["ke_met"], v["flight_met"]) == (3000, 4000)
-    assert fits["cpu_seconds"] == pytest.approx(1.0)
-    assert fits["us_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
-    assert fits["contacts_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
-    assert fits["cpu_to_common"] == pytest.approx(1.0)
+    assert list(fits) == [1]    # one fit per rank count
+    assert fits[1]["cpu_seconds"] == pytest.approx(1.0)
+    assert fits[1]["us_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
+    assert fits[1]["contacts_per_particle_step"] == pytest.approx(0.0, abs=1e-9)
+    assert fits[1]["cpu_to_common"] == pytest.approx(1.0)
     by_step = cost_table.read_log(str(tmp_path / "default-N1000-s1" / "log.lammps"))["cpu_by_step"]
     assert by_step == pytest.approx([(1000, 1.5), (2000, 2.5)])
     assert cost_table.cpu_to_step(by_step, 1500) == pytest.approx(2.0)    # linear within a run
@@ -96,6 +99,28 @@ def test_cost_table_by_hand(tmp_path):
     assert "| 16000 | 1 | 2 | 32 | 2000 | 3000 | 4000 | 40 | 1.00 | 2.50 | 31.2 | 2.00 | 64 | 0.100 |" in table
     assert "| 1000 | 1 | 2 | 2 | 2000 | 3000 | 4000 | 2 | 1.00 | 2.50 | 2.0 | 2.00 | - | 0.100 |" in table
     assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))["comm_share"])    # no loop
+
+
+def test_one_fit_per_rank_count(tmp_path):
+    """1-rank runs linear in N, 2-rank runs (another invocation's folder) as N^1.5: each rank
+    count has its own exponents, and the extrapolation starts from the 2-rank N = 16000"""
+    (tmp_path / "one").mkdir()
+    (tmp_path / "two").mkdir()
+    make_runs(tmp_path / "one")
+    make_runs(tmp_path / "two", ranks=2, power=1.5)
+    rows = cost_table.load([str(tmp_path / "one"), str(tmp_path / "two")])
+    sizes, fits = cost_table.write(rows, str(tmp_path / "out"))
+    assert sorted(fits) == [1, 2]
+    assert fits[1]["cpu_seconds"] == pytest.approx(1.0)
+    assert fits[2]["cpu_seconds"] == pytest.approx(1.5)
+    assert fits[2]["us_per_particle_step"] == pytest.approx(0.5)
+    assert cost_table.base_size(sizes) == (16000, 2)
+    table = (tmp_path / "out" / "table.md").read_text()
+    assert "Exponents in N at 1 rank (log-log least squares over 3 sizes): CPU to deposit 1.000" \
+        in table
+    assert "Exponents in N at 2 ranks (log-log least squares over 3 sizes): CPU to deposit 1.500" \
+        in table
+    assert "from N = 16000 on 2 ranks (4.00 us per particle-step" in table
 
 
 def test_extrapolation_by_hand(tmp_path):
