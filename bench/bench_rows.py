@@ -1,11 +1,14 @@
 """The bookkeeping the whole-deposit benchmarks share (bench/clumps, bench/accuracy,
-bench/cost_curve): a run's CPU time, peak memory and commit, and the rows.csv of the runs done
-so far, which lets an interrupted invocation continue where it stopped.
+bench/cost_curve): a run's CPU time, peak memory and commit, the rows.csv of the runs done
+so far, which lets an interrupted invocation continue where it stopped, and the LAMMPS log
+lines they read.
 
     bench_rows.py --peak-rss CMD [ARG ...]   runs CMD, then prints its largest process's peak
                                              resident set (run_measured's wrapper)"""
 import csv
+import json
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -18,6 +21,20 @@ def children_cpu():
     run without the share of the cores that other jobs took (wall time on a loaded machine)."""
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
+
+
+# LAMMPS's lines after each run: its loop time, ranks, steps and atoms; its CPU use; the
+# largest memory estimate per rank; and the pair's counters (cumulative since the pair was
+# defined, summed over the ranks)
+LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+CPU_USE = re.compile(r"^(\S+)% CPU use with")
+MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
+COUNTERS = "granular/ellipsoid counters: "
+
+
+def read_counters(line):
+    """the pair's counters of a log line as a dict; None if the line has none"""
+    return json.loads(line[len(COUNTERS):]) if line.startswith(COUNTERS) else None
 
 
 PEAK_RSS = "bench_rows: peak resident set of the largest process (kB): "

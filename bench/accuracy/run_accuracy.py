@@ -23,7 +23,6 @@ written to --results (accuracy_table.py).
 """
 import argparse
 import itertools
-import json
 import os
 import shutil
 import sys
@@ -36,7 +35,7 @@ sys.path.insert(0, os.path.join(ROOT, "bench"))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 import accuracy_table    # noqa: E402
 import deposit_run    # noqa: E402
-from bench_rows import append_row, commit, read_rows, run_measured    # noqa: E402
+from bench_rows import append_row, commit, read_counters, read_rows, run_measured  # noqa: E402
 
 # name: pair_style granular/ellipsoid keywords (doc/pair_granular_ellipsoid.rst)
 SETTINGS = {
@@ -51,7 +50,6 @@ FIELDS = ["setting", "keywords", "seed", "N", "np", "cpu_seconds", "peak_rss_mb"
           "steps", "at_rest", "phi", "Z", "Nslab", "fabric_anisotropy", "warnings"] + COUNTERS + \
     ["commit", "started_utc", "load_start", "load_end"] + \
     ["F%d" % k for k in range(accuracy_table.BINS)]
-COUNTERS_LINE = "granular/ellipsoid counters: "
 
 
 def read_log(path):
@@ -59,12 +57,13 @@ def read_log(path):
     counters, warnings = None, 0
     with open(path) as f:
         for line in f:
-            if line.startswith(COUNTERS_LINE):
-                counters = json.loads(line[len(COUNTERS_LINE):])
+            c = read_counters(line)
+            if c is not None:
+                counters = c
             elif line.startswith("WARNING"):    # not the input's echoed lines
                 warnings += 1
     if counters is None:
-        raise ValueError("no '%s' line in %s" % (COUNTERS_LINE.strip(), path))
+        raise ValueError("no pair counters line in %s" % path)
     return counters, warnings
 
 

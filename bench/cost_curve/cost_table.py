@@ -21,18 +21,15 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from bench_rows import read_rows  # noqa: E402
+from bench_rows import CPU_USE, LOOP, MEMORY, read_counters, read_rows  # noqa: E402
 from run_replicate import medians  # noqa: E402
 
-MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
-LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps")
-CPU_USE = re.compile(r"^(\S+)% CPU use with")
 COMM = re.compile(r"^Comm\s+\|\s*\S+\s*\|\s*(\S+)\s*\|")
-# in.deposit's check after each chunk: the step, the inserted count, KE/particle against ketol
-# and the largest v^2/2gd against flytol
 BOX = re.compile(r"orthogonal box = \(\S+ \S+ \S+\) to \((\S+) (\S+) \S+\)")
 GRID = re.compile(r"^\s*(\d+) by (\d+) by (\d+) MPI processor grid")
 ATOMS = re.compile(r"^(Nlocal|Nghost):\s+(\S+) ave")
+# in.deposit's check after each chunk: the step, the inserted count, KE/particle against ketol
+# and the largest v^2/2gd against flytol
 PROGRESS = re.compile(r"^PROGRESS step (\d+) inserted (\S+) of (\d+) KE/particle (\S+) "
                       r"target (\S+) flight (\S+) target (\S+)")
 
@@ -43,11 +40,13 @@ def read_log(path):
     first checked steps after which all particles were in and KE/particle was below ketol
     ("ke_met") and after which the largest v^2/2gd was below flytol ("flight_met"), the
     CPU time of the runs so far after each run, [(steps, CPU seconds)] ("cpu_by_step": loop
-    time x CPU use x ranks), the ghosts per owned atom after the last run ("ghost_ratio"),
-    the box's edges in x and y ("box") and the ranks along them ("grid")"""
+    time x CPU use x ranks), the pair's counters after each run, [(steps, pairs tested,
+    contacts)] ("work_by_step", None where a run printed none), the ghosts per owned atom
+    after the last run ("ghost_ratio"), the box's edges in x and y ("box") and the ranks along
+    them ("grid")"""
     memory, loop, comm = 0.0, 0.0, 0.0
     ke_met, flight_met = math.nan, math.nan
-    steps, cpu, cpu_by_step = 0, 0.0, []
+    steps, cpu, cpu_by_step, work_by_step = 0, 0.0, [], []
     atoms, box, grid = {}, None, None
     with open(path) as f:
         for line in f:
@@ -66,6 +65,11 @@ def read_log(path):
                 run_cpu = float(m.group(1)) * int(m.group(2))    # wall x ranks until its CPU use
                 cpu += run_cpu
                 cpu_by_step.append((steps, cpu))
+                work_by_step.append(None)
+                continue
+            c = read_counters(line)
+            if c is not None and work_by_step:    # printed after its run's loop time
+                work_by_step[-1] = (steps, c["pairs"], c["contacts"])
                 continue
             m = CPU_USE.match(line)
             if m and cpu_by_step:    # the last loop's CPU use, printed after its loop time
@@ -93,7 +97,7 @@ def read_log(path):
                 comm += float(m.group(1))
     return {"memory_mb": memory, "comm_share": comm / loop if loop > 0 else math.nan,
             "ke_met": ke_met, "flight_met": flight_met,
-            "cpu_by_step": cpu_by_step, "box": box, "grid": grid,
+            "cpu_by_step": cpu_by_step, "work_by_step": work_by_step, "box": box, "grid": grid,
             "ghost_ratio": atoms["Nghost"] / atoms["Nlocal"] if atoms.get("Nlocal") else math.nan}
 
 
@@ -107,6 +111,42 @@ def cpu_to_step(cpu_by_step, step):
             return before[1] + (after[1] - before[1]) * (step - before[0]) / (after[0] - before[0])
         before = after
     return math.nan
+
+
+def chunks(row):
+    """a run's chunks (its runs of more than 0 steps with counters): per chunk the size N and
+    the pairs tested, the contacts and the CPU microseconds per particle-step"""
+    out, before = [], (0, 0.0, 0, 0)
+    n = int(row["N"])
+    for (steps, cpu), work in zip(row["cpu_by_step"], row["work_by_step"]):
+        if work is None or steps <= before[0]:
+            continue
+        d = steps - before[0]
+        out.append((n, (work[1] - before[2]) / (n * d), (work[2] - before[3]) / (n * d),
+                    1e6 * (cpu - before[1]) / (n * d)))
+        before = (steps, cpu, work[1], work[2])
+    return out
+
+
+def work_fit(rows):
+    """the CPU time per particle-step of every chunk of the rows (one rank count) fitted as
+    a x pairs tested + b x contacts + c (per particle-step; least squares): None with fewer
+    chunks than 3, else {"ns_per_pair", "ns_per_contact", "ns_per_particle", "residual":
+    {N: the mean of its chunks' residuals, us}, "measured": {N: the mean of its chunks' time,
+    us}}. A code whose cost follows its work has residuals that do not grow with N."""
+    data = [c for r in rows for c in chunks(r)]
+    if len(data) < 3:
+        return None
+    x = np.array([[p, c, 1.0] for _, p, c, _ in data])
+    y = np.array([t for _, _, _, t in data])
+    coef = np.linalg.lstsq(x, y, rcond=None)[0]
+    residual = y - x @ coef
+    sizes = sorted({d[0] for d in data})
+    pick = {n: np.array([d[0] == n for d in data]) for n in sizes}
+    return {"ns_per_pair": 1e3 * coef[0], "ns_per_contact": 1e3 * coef[1],
+            "ns_per_particle": 1e3 * coef[2],
+            "residual": {n: float(residual[pick[n]].mean()) for n in sizes},
+            "measured": {n: float(y[pick[n]].mean()) for n in sizes}}
 
 
 def load(run_dirs):
@@ -269,6 +309,18 @@ def write(rows, results, at_rest=None):
                      % (ranks, "s" if ranks > 1 else "", len(same), shown["cpu_seconds"],
                         shown["steps"], shown["us_per_particle_step"], common,
                         shown["cpu_to_common"], shown["contacts_per_particle_step"]))
+        fit = work_fit([r for r in rows if int(r["np"]) == ranks])
+        if fit:
+            lines.append("")
+            lines.append("The work, chunk by chunk at %d rank%s: CPU per particle-step = %.2f ns "
+                         "per pair tested + %.0f ns per contact + %.0f ns (least squares over "
+                         "the chunks between checks of every size); the mean residual (measured "
+                         "- fitted, of a mean measured) per N: %s."
+                         % (ranks, "s" if ranks > 1 else "", fit["ns_per_pair"],
+                            fit["ns_per_contact"], fit["ns_per_particle"],
+                            ", ".join("%d %+.2f us (of %.2f)" % (n, fit["residual"][n],
+                                                                 fit["measured"][n])
+                                      for n in fit["residual"])))
     lines.append("")
     lines.append(extrapolation(sizes, fits[base_size(sizes)[1]]["steps"]))
     os.makedirs(results, exist_ok=True)

@@ -18,7 +18,6 @@ Comm, Modify, Other) and LAMMPS's memory estimate per particle. Writes table_rep
 rows_replicate.csv to --results.
 """
 import argparse
-import json
 import os
 import re
 import subprocess
@@ -31,7 +30,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
-from bench_rows import append_row, commit, read_rows  # noqa: E402
+from bench_rows import (CPU_USE, LOOP, MEMORY, append_row, commit, read_counters,  # noqa: E402
+                        read_rows)
 from deposit_run import lmp_binary  # noqa: E402
 
 INPUT = os.path.join(HERE, "in.replicate")
@@ -42,11 +42,7 @@ MEASURES = ["steps", "loop_seconds", "cpu_use", "us_per_particle_step",
 FIELDS = ["k", "N", "np", "repeat"] + MEASURES + ["commit", "started_utc", "load_start",
                                                   "load_end"]
 
-LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms")
-CPU_USE = re.compile(r"^(\S+)% CPU use with")
-MEMORY = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes")
 SECTION = re.compile(r"^(\w+)\s+\|.*\|\s*(\S+)\s*$")    # a section's name and its %total
-COUNTERS = "granular/ellipsoid counters: "
 
 
 def read_log(path):
@@ -69,8 +65,9 @@ def read_log(path):
             if m:
                 memory = max(memory, float(m.group(1)))
                 continue
-            if line.startswith(COUNTERS):
-                counters.append(json.loads(line[len(COUNTERS):])["contacts"])
+            c = read_counters(line)
+            if c is not None:
+                counters.append(c["contacts"])
                 continue
             m = SECTION.match(line)
             if m and runs and m.group(1) in SECTIONS:

@@ -29,8 +29,10 @@ Loop time of {loop1} on 1 procs for 1000 steps with {n} atoms
 
 50.0% CPU use with 1 MPI tasks x no OpenMP threads
 Comm    | 0.1        | {comm1}      | 0.3        |   0.0 |  5.00
+granular/ellipsoid counters: {{"pairs": {pairs1}, "contacts": 0}}
 Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 1.5 Mbytes
 Loop time of {loop2} on 1 procs for 1000 steps with {n} atoms
+granular/ellipsoid counters: {{"pairs": {pairs2}, "contacts": {contacts2}}}
 Comm    | 0.1        | {comm2}      | 0.3        |   0.0 |  5.00
 Nlocal:           {n} ave        {n} max        {n} min
 Nghost:           {ghosts} ave        {ghosts} max        {ghosts} min
@@ -41,7 +43,9 @@ def make_runs(folder, ranks=1, power=1.0):
     """N = 1000, 4000, 16000 with CPU exactly linear in N (1 us per particle-step at 2000
     steps; as N^power with another power), two seeds each (CPU +-10 %), memory 2 kB per
     particle; the logs' two runs of 1000 steps take 3 and 1 ms of wall time per particle, the
-    first at 50 % CPU use"""
+    first at 50 % CPU use; their work (the pair's counters) makes the CPU per particle-step
+    10 ns per pair tested + 200 ns per contact + 500 ns exactly: 100 pairs per particle-step
+    in the first run, then 50, 30 and 10 pairs with 0, 1 and 2 contacts per N"""
     rows = []
     for n in (1000, 4000, 16000):
         for seed, f in ((1, 0.9), (2, 1.1)):
@@ -52,7 +56,11 @@ def make_runs(folder, ranks=1, power=1.0):
                          "peak_rss_mb": "" if seed == 1 or n == 1000 else 0.004 * n})
             run = folder / ("default-N%d-s%d" % (n, seed))
             run.mkdir()
+            pairs2, contacts2 = {1000: (50, 0), 4000: (30, 1), 16000: (10, 2)}[n]
             (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, ghosts=n // 2,
+                                                       pairs1=100 * n * 1000,
+                                                       pairs2=(100 + pairs2) * n * 1000,
+                                                       contacts2=contacts2 * n * 1000,
                                                        loop1=3e-3 * n,
                                                        loop2=1e-3 * n, comm1=4e-4 * n,
                                                        comm2=0))
@@ -99,6 +107,15 @@ def test_cost_table_by_hand(tmp_path):
     assert "| 16000 | 1 | 2 | 32 | 2000 | 3000 | 4000 | 40 | 1.00 | 2.50 | 31.2 | 2.00 | 64 | 0.100 |" in table
     assert "| 1000 | 1 | 2 | 2 | 2000 | 3000 | 4000 | 2 | 1.00 | 2.50 | 2.0 | 2.00 | - | 0.100 |" in table
     assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))["comm_share"])    # no loop
+    fit = cost_table.work_fit(cost_table.load([str(tmp_path)]))
+    assert fit["ns_per_pair"] == pytest.approx(10)
+    assert fit["ns_per_contact"] == pytest.approx(200)
+    assert fit["ns_per_particle"] == pytest.approx(500)
+    for n in (1000, 4000, 16000):
+        assert fit["residual"][n] == pytest.approx(0, abs=1e-9)
+        assert fit["measured"][n] == pytest.approx(1.25)
+    assert "CPU per particle-step = 10.00 ns per pair tested + 200 ns per contact + 500 ns" in table
+    assert cost_table.work_fit([]) is None
 
 
 def test_one_fit_per_rank_count(tmp_path):
