@@ -30,7 +30,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-from bench_rows import commit, read_rows  # noqa: E402
+from bench_rows import LOOP, commit, read_rows  # noqa: E402
 SCENES = os.path.join(ROOT, "bench", "scenes")
 SPACING = 1.6      # drop lattice spacing (> longest axis 2a = 1.52)
 FLOOR_D = 1.0      # frozen floor spheres
@@ -85,8 +85,7 @@ def run_lmp(workdir, inp, log, variables, np=1, check=True):
 def parse_log(path):
     """Last run of a LAMMPS log: loop time, steps, atoms, Pair %total, our counters."""
     text = open(path).read()
-    loops = re.findall(r"Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms",
-                       text)
+    loops = [m.groups() for m in map(LOOP.match, text.splitlines()) if m]
     if not loops:
         raise RuntimeError(f"no loop time in {path}")
     t, procs, steps, atoms = loops[-1]

@@ -2,9 +2,10 @@
 """The cost curve of the default deposit against N (issue 32, item 3): from the rows of
 bench/accuracy/run_accuracy.py's default setting (rows.csv of one or more run folders, each run's
 LAMMPS log beside it) the table per (N, ranks) of the CPU time to deposit, the steps to rest,
-the CPU time per particle-step, LAMMPS's memory estimate per rank and per particle and the
-communication's share of the loop time; the fitted exponents of the CPU time to deposit and of
-the time per particle-step in N, and a log-log plot.
+the CPU time and the contacts per particle-step, LAMMPS's memory estimate and the peak
+resident set per rank, the communication's share of the loop time; per rank count the fitted
+exponents in N and whether the time follows the work (pairs tested, contacts) chunk by chunk;
+the extrapolation to 10^6 particles; and a log-log plot.
 
     cost_table.py RUNS_DIR [RUNS_DIR ...] --results DIR
 
@@ -18,6 +19,7 @@ import re
 import sys
 
 import numpy as np
+from scipy.optimize import nnls
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
@@ -114,39 +116,55 @@ def cpu_to_step(cpu_by_step, step):
 
 
 def chunks(row):
-    """a run's chunks (its runs of more than 0 steps with counters): per chunk the size N and
-    the pairs tested, the contacts and the CPU microseconds per particle-step"""
+    """a run's chunks (its runs of more than 0 steps with counters; a run without joins the
+    next): per chunk the size N and the pairs tested, the contacts and the CPU microseconds per
+    particle-step. Counters that fall (a pair defined anew) start the next chunk from there."""
     out, before = [], (0, 0.0, 0, 0)
     n = int(row["N"])
     for (steps, cpu), work in zip(row["cpu_by_step"], row["work_by_step"]):
-        if work is None or steps <= before[0]:
+        if work is None:
             continue
-        d = steps - before[0]
-        out.append((n, (work[1] - before[2]) / (n * d), (work[2] - before[3]) / (n * d),
-                    1e6 * (cpu - before[1]) / (n * d)))
+        if steps > before[0] and work[1] >= before[2] and work[2] >= before[3]:
+            d = steps - before[0]
+            out.append((n, (work[1] - before[2]) / (n * d), (work[2] - before[3]) / (n * d),
+                        1e6 * (cpu - before[1]) / (n * d)))
         before = (steps, cpu, work[1], work[2])
     return out
 
 
 def work_fit(rows):
-    """the CPU time per particle-step of every chunk of the rows (one rank count) fitted as
-    a x pairs tested + b x contacts + c (per particle-step; least squares): None with fewer
-    chunks than 3, else {"ns_per_pair", "ns_per_contact", "ns_per_particle", "residual":
-    {N: the mean of its chunks' residuals, us}, "measured": {N: the mean of its chunks' time,
-    us}}. A code whose cost follows its work has residuals that do not grow with N."""
+    """whether the time follows the work: the CPU time per particle-step of the smallest N's
+    chunks fitted as a x pairs tested + b x contacts + c (per particle-step; non-negative least
+    squares), then every N's chunks measured against that prediction. None with fewer than 2
+    sizes or 3 chunks of the smallest; else {"fitted_n", "ns_per_pair", "ns_per_contact",
+    "ns_per_particle", "ratio": {N: its chunks' measured / predicted time}}. A code whose cost
+    follows its work keeps the ratio at 1 at every N; a working set leaving the caches raises
+    it with N. Pairs and contacts rise together along a deposit, so the split of the cost
+    between a and b is not determined; their prediction is."""
     data = [c for r in rows for c in chunks(r)]
-    if len(data) < 3:
-        return None
-    x = np.array([[p, c, 1.0] for _, p, c, _ in data])
-    y = np.array([t for _, _, _, t in data])
-    coef = np.linalg.lstsq(x, y, rcond=None)[0]
-    residual = y - x @ coef
     sizes = sorted({d[0] for d in data})
-    pick = {n: np.array([d[0] == n for d in data]) for n in sizes}
-    return {"ns_per_pair": 1e3 * coef[0], "ns_per_contact": 1e3 * coef[1],
-            "ns_per_particle": 1e3 * coef[2],
-            "residual": {n: float(residual[pick[n]].mean()) for n in sizes},
-            "measured": {n: float(y[pick[n]].mean()) for n in sizes}}
+    if len(sizes) < 2:
+        return None
+    x = {n: np.array([[p, c, 1.0] for m, p, c, _ in data if m == n]) for n in sizes}
+    y = {n: np.array([t for m, _, _, t in data if m == n]) for n in sizes}
+    if len(y[sizes[0]]) < 3:
+        return None
+    coef = nnls(x[sizes[0]], y[sizes[0]])[0]
+    return {"fitted_n": sizes[0], "ns_per_pair": 1e3 * coef[0],
+            "ns_per_contact": 1e3 * coef[1], "ns_per_particle": 1e3 * coef[2],
+            "ratio": {n: float(y[n].sum() / (x[n] @ coef).sum()) for n in sizes}}
+
+
+def work_words(ranks, fit):
+    """work_fit()'s answer in words"""
+    return ("Time against work at %d rank%s: the CPU per particle-step of N = %d's chunks "
+            "(the runs between checks) fitted as %.2f ns per pair tested + %.0f ns per contact "
+            "+ %.0f ns per particle (non-negative least squares; pairs and contacts rise "
+            "together, so their split is not determined, their prediction is); each N's chunks "
+            "measured against that prediction: %s. A cost that follows the work stays at 1.00."
+            % (ranks, "s" if ranks > 1 else "", fit["fitted_n"], fit["ns_per_pair"],
+               fit["ns_per_contact"], fit["ns_per_particle"],
+               ", ".join("N = %d %.2f" % (n, r) for n, r in fit["ratio"].items())))
 
 
 def load(run_dirs):
@@ -262,16 +280,21 @@ def extrapolation(sizes, steps_exponent, n=10 ** 6):
     parts = ["on %d cores (%d x %d ranks, %.2f ghosts per owned particle) %.2f us per "
              "particle-step, %.1f hours" % (p, grid[0], grid[1], g, t, hours)
              for p, (grid, g, t, hours) in e["cores"].items()]
+    if steps_exponent is None:
+        steps = "%.0f steps to rest (one size at its rank count: no exponent fitted, the " \
+                "steps held at the measured)" % e["steps"]
+    else:
+        steps = "%.0f steps to rest (%.0f steps times (%.0e / %d)^%.3f, the fitted exponent)" \
+                % (e["steps"], v["steps"], n, e["base"][0], steps_exponent)
     return ("A deposit of %.0e particles, from N = %d on %d rank%s (%.2f us per particle-step, "
             "communication %.3f of the loop at %.2f ghosts per owned particle: a ghost shell "
-            "%.2f d wide) and %.0f steps to rest (%.0f steps times (%.0e / %d)^%.3f, the fitted "
-            "exponent): %s; LAMMPS's memory estimate %.1f GB in all (%.1f kB per particle). "
-            "The communication's time is taken as proportional to the ghosts (no latency, no "
-            "load imbalance): a lower bound on the time."
+            "%.2f d wide) and %s: %s; LAMMPS's memory estimate %.1f GB in all (%.1f kB per "
+            "particle). The communication's time is taken as proportional to the ghosts (no "
+            "latency, no load imbalance): a lower bound on the time."
             % (n, e["base"][0], e["base"][1], "s" if e["base"][1] > 1 else "",
                v["us_per_particle_step"], v["comm_share"], v["ghost_ratio"], e["width"],
-               e["steps"], v["steps"], n, e["base"][0], steps_exponent or 0.0,
-               "; ".join(parts), v["kb_per_particle"] * n / 1024 ** 2, v["kb_per_particle"]))
+               steps, "; ".join(parts), v["kb_per_particle"] * n / 1024 ** 2,
+               v["kb_per_particle"]))
 
 
 def write(rows, results, at_rest=None):
@@ -312,15 +335,7 @@ def write(rows, results, at_rest=None):
         fit = work_fit([r for r in rows if int(r["np"]) == ranks])
         if fit:
             lines.append("")
-            lines.append("The work, chunk by chunk at %d rank%s: CPU per particle-step = %.2f ns "
-                         "per pair tested + %.0f ns per contact + %.0f ns (least squares over "
-                         "the chunks between checks of every size); the mean residual (measured "
-                         "- fitted, of a mean measured) per N: %s."
-                         % (ranks, "s" if ranks > 1 else "", fit["ns_per_pair"],
-                            fit["ns_per_contact"], fit["ns_per_particle"],
-                            ", ".join("%d %+.2f us (of %.2f)" % (n, fit["residual"][n],
-                                                                 fit["measured"][n])
-                                      for n in fit["residual"])))
+            lines.append(work_words(ranks, fit))
     lines.append("")
     lines.append(extrapolation(sizes, fits[base_size(sizes)[1]]["steps"]))
     os.makedirs(results, exist_ok=True)

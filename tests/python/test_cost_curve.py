@@ -19,20 +19,18 @@ import cost_table    # noqa: E402
 import run_replicate    # noqa: E402
 
 LOG = """Created orthogonal box = (0 0 0) to (4.5 4.5 20)
-  1 by 1 by 1 MPI processor grid
+  {procs} by 1 by 1 MPI processor grid
 Per MPI rank memory allocation (min/avg/max) = 10 | 11 | {mem} Mbytes
 PROGRESS step 1000 inserted 10 of {n} KE/particle 1e-2 target 1e-3 flight 0.5 target 1
 PROGRESS step 2000 inserted {n} of {n} KE/particle 1e-2 target 1e-3 flight 3 target 1
 PROGRESS step 3000 inserted {n} of {n} KE/particle 5e-4 target 1e-3 flight 2 target 1
 PROGRESS step 4000 inserted {n} of {n} KE/particle 2e-3 target 1e-3 flight 0.5 target 1
-Loop time of {loop1} on 1 procs for 1000 steps with {n} atoms
+Loop time of {loop1} on {procs} procs for 1000 steps with {n} atoms
 
 50.0% CPU use with 1 MPI tasks x no OpenMP threads
 Comm    | 0.1        | {comm1}      | 0.3        |   0.0 |  5.00
-granular/ellipsoid counters: {{"pairs": {pairs1}, "contacts": 0}}
 Per MPI rank memory allocation (min/avg/max) = 10 | 11 | 1.5 Mbytes
-Loop time of {loop2} on 1 procs for 1000 steps with {n} atoms
-granular/ellipsoid counters: {{"pairs": {pairs2}, "contacts": {contacts2}}}
+Loop time of {loop2} on {procs} procs for 1000 steps with {n} atoms
 Comm    | 0.1        | {comm2}      | 0.3        |   0.0 |  5.00
 Nlocal:           {n} ave        {n} max        {n} min
 Nghost:           {ghosts} ave        {ghosts} max        {ghosts} min
@@ -43,9 +41,7 @@ def make_runs(folder, ranks=1, power=1.0):
     """N = 1000, 4000, 16000 with CPU exactly linear in N (1 us per particle-step at 2000
     steps; as N^power with another power), two seeds each (CPU +-10 %), memory 2 kB per
     particle; the logs' two runs of 1000 steps take 3 and 1 ms of wall time per particle, the
-    first at 50 % CPU use; their work (the pair's counters) makes the CPU per particle-step
-    10 ns per pair tested + 200 ns per contact + 500 ns exactly: 100 pairs per particle-step
-    in the first run, then 50, 30 and 10 pairs with 0, 1 and 2 contacts per N"""
+    first at 50 % CPU use"""
     rows = []
     for n in (1000, 4000, 16000):
         for seed, f in ((1, 0.9), (2, 1.1)):
@@ -56,11 +52,8 @@ def make_runs(folder, ranks=1, power=1.0):
                          "peak_rss_mb": "" if seed == 1 or n == 1000 else 0.004 * n})
             run = folder / ("default-N%d-s%d" % (n, seed))
             run.mkdir()
-            pairs2, contacts2 = {1000: (50, 0), 4000: (30, 1), 16000: (10, 2)}[n]
             (run / "log.lammps").write_text(LOG.format(mem=2 * n / 1024, n=n, ghosts=n // 2,
-                                                       pairs1=100 * n * 1000,
-                                                       pairs2=(100 + pairs2) * n * 1000,
-                                                       contacts2=contacts2 * n * 1000,
+                                                       procs=ranks,
                                                        loop1=3e-3 * n,
                                                        loop2=1e-3 * n, comm1=4e-4 * n,
                                                        comm2=0))
@@ -107,15 +100,7 @@ def test_cost_table_by_hand(tmp_path):
     assert "| 16000 | 1 | 2 | 32 | 2000 | 3000 | 4000 | 40 | 1.00 | 2.50 | 31.2 | 2.00 | 64 | 0.100 |" in table
     assert "| 1000 | 1 | 2 | 2 | 2000 | 3000 | 4000 | 2 | 1.00 | 2.50 | 2.0 | 2.00 | - | 0.100 |" in table
     assert math.isnan(cost_table.read_log(str(tmp_path / "rows.csv"))["comm_share"])    # no loop
-    fit = cost_table.work_fit(cost_table.load([str(tmp_path)]))
-    assert fit["ns_per_pair"] == pytest.approx(10)
-    assert fit["ns_per_contact"] == pytest.approx(200)
-    assert fit["ns_per_particle"] == pytest.approx(500)
-    for n in (1000, 4000, 16000):
-        assert fit["residual"][n] == pytest.approx(0, abs=1e-9)
-        assert fit["measured"][n] == pytest.approx(1.25)
-    assert "CPU per particle-step = 10.00 ns per pair tested + 200 ns per contact + 500 ns" in table
-    assert cost_table.work_fit([]) is None
+
 
 
 def test_one_fit_per_rank_count(tmp_path):
@@ -138,6 +123,66 @@ def test_one_fit_per_rank_count(tmp_path):
     assert "Exponents in N at 2 ranks (log-log least squares over 3 sizes): CPU to deposit 1.500" \
         in table
     assert "from N = 16000 on 2 ranks (4.00 us per particle-step" in table
+
+
+def work_row(n, chunks, scale=1.0):
+    """a deposit's row with its runs' CPU and counters: chunks of 1000 steps, each (pairs tested,
+    contacts per particle-step) or "none" (a run that printed no counters) or "reset" (the
+    counters start anew), whose CPU per particle-step is 10 ns per pair + 200 ns per contact +
+    500 ns, times scale; a 0-step run first"""
+    cpu_by_step, work_by_step = [(0, 1e-6)], [(0, 0, 0)]
+    steps, cpu, pairs, contacts, rate = 0, 1e-6, 0, 0, (0, 0)
+    for c in chunks:
+        steps += 1000
+        if c == "reset":
+            pairs, contacts = n * 5, 0
+        elif c != "none":
+            rate = c
+        if c != "reset":
+            pairs += rate[0] * n * 1000
+            contacts += rate[1] * n * 1000
+        cpu += scale * (10 * rate[0] + 200 * rate[1] + 500) * 1e-9 * n * 1000
+        cpu_by_step.append((steps, cpu))
+        work_by_step.append(None if c == "none" else (steps, pairs, contacts))
+    return {"N": n, "np": 1, "cpu_by_step": cpu_by_step, "work_by_step": work_by_step}
+
+
+def test_work_fit_by_hand():
+    """N = 1000's chunks give the costs exactly; N = 4000 costs 1.2 times its work (a run
+    whose counters start anew is left out), N = 16000 another mix of work at its cost (a run
+    without counters joins the next)"""
+    rows = [work_row(1000, [(100, 0), (50, 0), (30, 1), (10, 2)]),
+            work_row(4000, [(100, 0), "reset", (30, 1)], scale=1.2),
+            work_row(16000, [(20, 3), "none", (40, 1)])]
+    assert [c[0] for c in cost_table.chunks(rows[1])] == [4000, 4000]
+    fit = cost_table.work_fit(rows)
+    assert fit["fitted_n"] == 1000
+    assert (fit["ns_per_pair"], fit["ns_per_contact"], fit["ns_per_particle"]) == \
+        (pytest.approx(10), pytest.approx(200), pytest.approx(500))
+    assert fit["ratio"] == {1000: pytest.approx(1.0), 4000: pytest.approx(1.2),
+                            16000: pytest.approx(1.0)}
+    assert cost_table.work_fit(rows[:1]) is None    # one size: nothing to compare
+    words = cost_table.work_words(2, fit)
+    assert "at 2 ranks: the CPU per particle-step of N = 1000's chunks" in words
+    assert "10.00 ns per pair tested + 200 ns per contact + 500 ns per particle" in words
+    assert "N = 1000 1.00, N = 4000 1.20, N = 16000 1.00." in words
+
+
+def test_read_log_counters_after_their_run(tmp_path):
+    """each run's counters line belongs to the loop before it; a run without one has None"""
+    log = tmp_path / "log.lammps"
+    log.write_text("""Loop time of 1e-06 on 2 procs for 0 steps with 1 atoms
+granular/ellipsoid counters: {"pairs": 0, "contacts": 0}
+Loop time of 2.0 on 2 procs for 1000 steps with 10 atoms
+
+50.0% CPU use with 2 MPI tasks x no OpenMP threads
+granular/ellipsoid counters: {"pairs": 70, "contacts": 3}
+Loop time of 1.0 on 2 procs for 1000 steps with 10 atoms
+""")
+    d = cost_table.read_log(str(log))
+    assert d["work_by_step"] == [(0, 0, 0), (1000, 70, 3), None]
+    assert [s for s, _ in d["cpu_by_step"]] == [0, 1000, 2000]
+    assert [c for _, c in d["cpu_by_step"]] == pytest.approx([2e-6, 2.000002, 4.000002])
 
 
 def test_extrapolation_by_hand(tmp_path):
