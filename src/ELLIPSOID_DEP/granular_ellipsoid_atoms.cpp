@@ -6,7 +6,9 @@
 
 #include "error.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using EllipsoidDep::Vec3;
@@ -139,4 +141,33 @@ void EllipsoidAtomsWriter::set_ellipsoid(int i, const double *semi_axes, const d
 {
   avec->set_shape(i, semi_axes[0], semi_axes[1], semi_axes[2]);
   std::memcpy(stored_quat(i), quat, 4 * sizeof(double));
+}
+
+namespace {
+// the owned bonus entries of one bonus type in their owners' order (order_bonus_as_atoms)
+template <class Bonus> void order_bonus(Bonus *bonus, int *ellipsoid, int nlocal)
+{
+  int next = 0;
+  bool ordered = true;
+  for (int i = 0; i < nlocal && ordered; i++)
+    if (ellipsoid[i] >= 0) ordered = ellipsoid[i] == next++;
+  if (ordered) return;
+  std::vector<Bonus> owned;    // the owned entries are bonus[0, nlocal_bonus)
+  owned.reserve(nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    if (ellipsoid[i] < 0) continue;
+    owned.push_back(bonus[ellipsoid[i]]);
+    owned.back().ilocal = i;
+    ellipsoid[i] = static_cast<int>(owned.size()) - 1;
+  }
+  std::copy(owned.begin(), owned.end(), bonus);
+}
+}    // namespace
+
+void EllipsoidAtomsWriter::order_bonus_as_atoms()
+{
+  if (super)
+    order_bonus(avec->bonus_super, atom->ellipsoid, atom->nlocal);
+  else
+    order_bonus(avec->bonus, atom->ellipsoid, atom->nlocal);
 }

@@ -132,6 +132,12 @@ class EllipsoidAtomsWriter : public EllipsoidAtoms {
   // gives atom i (whose rmass is set: the superellipsoid style derives its inertia from it)
   // semi-axes along its body axes and its orientation (w, x, y, z), body -> box
   void set_ellipsoid(int i, const double *semi_axes, const double *quat);
+  // puts the owned atoms' bonus entries in the atoms' order (the ghosts' follow when borders
+  // are next exchanged). LAMMPS's atom sort moves the atoms, not their bonus entries: after a
+  // pour these stay in insertion order, and every read of a shape or quaternion by the pair,
+  // the wall and the integrator goes to a random place once they outgrow the caches. No value
+  // changes, only where it is stored.
+  void order_bonus_as_atoms();
 };
 
 // Motion at the contact point x of atoms i and j. A frozen atom (fix freeze) is immovable:

@@ -93,10 +93,13 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   history_update = update->setupflag == 0;
   // atoms inserted during a run (fix deposit, ...) arrive with a neighbour list build; one
-  // without a shape would be read out of bounds by the candidates and the states below
-  if (neighbor->ago == 0)
-    EllipsoidAtoms(atom).require_shapes(lmp, "Pair granular/ellipsoid",
-                                        atom->nlocal + atom->nghost);
+  // without a shape would be read out of bounds by the candidates and the states below.
+  // The build follows LAMMPS's atom sort: the bonus entries follow the atoms from here on
+  if (neighbor->ago == 0) {
+    EllipsoidAtomsWriter atoms(atom);
+    atoms.require_shapes(lmp, "Pair granular/ellipsoid", atom->nlocal + atom->nghost);
+    atoms.order_bonus_as_atoms();
+  }
   const int law_slots = pipeline.law_slots;
   // new candidates without a build between (the fix's rows are still those of the list)
   if (contact_rows.live() && candidates.stale(lmp, list, respa_run)) store_contact_rows();
