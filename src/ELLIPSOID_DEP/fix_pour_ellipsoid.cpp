@@ -216,6 +216,7 @@ void FixPourEllipsoid::check_contact_times(bool run_start)
   const double speed = impact_speed();
   if (!(speed > 0.0)) return;
   const double mass = lightest_mass(), radius = sampler->flattest_radius();
+  const double compliance = sampler->largest_rotational_compliance();
   ContactTimes times;
   // two of the lightest particles with the flattest surfaces, as the pair's check pairs types
   auto *pair = dynamic_cast<PairGranularEllipsoid *>(force->pair_match("granular/ellipsoid", 1));
@@ -223,13 +224,14 @@ void FixPourEllipsoid::check_contact_times(bool run_start)
   std::string refusal;
   if (pair && pair->law_of_pair(ntype, ntype, law, refusal))
     times.add_contact(lmp, law, effective_radius(radius, radius), mass * mass / (mass + mass),
-                      speed, fmt::format("types {} {}", ntype, ntype));
+                      tangential_mass(mass, compliance, mass, compliance), speed,
+                      fmt::format("types {} {}", ntype, ntype));
   // one against every wall acting on the poured particles (their mask: all and this group)
   for (const auto *fix : modify->get_fix_by_style("^wall/gran/(region/)?ellipsoid$")) {
     const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
     if (wall && (fix->groupbit & (1 | groupbit)))
-      times.add_contact(lmp, wall->force_law(), radius, mass, speed,
-                        fmt::format("type {} on fix {}", ntype, fix->id));
+      times.add_contact(lmp, wall->force_law(), radius, mass, tangential_mass(mass, compliance),
+                        speed, fmt::format("type {} on fix {}", ntype, fix->id));
   }
   const bool shorter = times.contact_time < 0.9 * checked.contact_time ||
       times.damping_time < 0.9 * checked.damping_time;

@@ -58,8 +58,8 @@ void FixWallGranEllipsoid::init()
 }
 
 /* ----------------------------------------------------------------------
-   shortest Hertz contact and damping times against the walls: per type the lightest atom
-   and the flattest surface, at the impact speed (keyword, or the fastest atom of the group)
+   shortest Hertz contact and damping times against the walls: per type the lightest atom,
+   the flattest surface and the largest rotational compliance, at the impact speed (keyword, or the fastest atom of the group)
 ------------------------------------------------------------------------- */
 
 void FixWallGranEllipsoid::update_contact_times()
@@ -70,7 +70,8 @@ void FixWallGranEllipsoid::update_contact_times()
   for (int t = 1; t <= atom->ntypes; t++) {
     const double mass = scales.lightest_mass[t], radius = scales.flattest_radius[t];
     if (!(mass > 0.0 && speed > 0.0)) continue;
-    times.add_contact(lmp, law, radius, mass, speed, fmt::format("type {}", t));
+    times.add_contact(lmp, law, radius, mass, tangential_mass(mass, scales.compliance[t]), speed,
+                      fmt::format("type {}", t));
   }
   report_contact_times(lmp, fmt::format("Fix {}", style), times, speed, times_reported);
 }

@@ -22,8 +22,9 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
   const int ntypes = atom->ntypes;
   const EllipsoidAtoms atoms(atom);
   // negated masses so that one MPI_MAX finds the lightest (-0: no atom)
-  std::vector<double> local(2 * (ntypes + 1) + 1, 0.0), all(local.size(), 0.0);
-  double *neg_mass = local.data(), *radius = local.data() + ntypes + 1;
+  std::vector<double> local(3 * (ntypes + 1) + 1, 0.0), all(local.size(), 0.0);
+  double *neg_mass = local.data(), *radius = local.data() + ntypes + 1,
+         *compliance = local.data() + 2 * (ntypes + 1);
   double &speed = local.back();
   for (int t = 0; t <= ntypes; t++) neg_mass[t] = -HUGE_VAL;
   for (int i = 0; i < atom->nlocal; i++) {
@@ -32,6 +33,8 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
     const double *s = atoms.shape(i);
     neg_mass[t] = std::max(neg_mass[t], -atom->rmass[i]);
     radius[t] = std::max(radius[t], EllipsoidDep::flattest_radius(s[0], s[1], s[2]));
+    compliance[t] =
+        std::max(compliance[t], EllipsoidDep::rotational_compliance(s[0], s[1], s[2]));
     const double *v = atom->v[i];
     speed = std::max(speed, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
   }
@@ -40,14 +43,23 @@ ContactScales LAMMPS_NS::contact_scales(LAMMPS *lmp, int groupbit)
   ContactScales scales;
   scales.lightest_mass.assign(ntypes + 1, 0.0);
   scales.flattest_radius.assign(all.begin() + ntypes + 1, all.begin() + 2 * (ntypes + 1));
+  scales.compliance.assign(all.begin() + 2 * (ntypes + 1), all.begin() + 3 * (ntypes + 1));
   for (int t = 1; t <= ntypes; t++)
     if (std::isfinite(all[t])) scales.lightest_mass[t] = -all[t];
   scales.fastest_speed = all.back();
   return scales;
 }
 
+double LAMMPS_NS::tangential_mass(double mass_i, double compliance_i, double mass_j,
+                                  double compliance_j)
+{
+  const double inverse =
+      (1.0 + compliance_i) / mass_i + (mass_j > 0.0 ? (1.0 + compliance_j) / mass_j : 0.0);
+  return 1.0 / inverse;
+}
+
 void ContactTimes::add(double contact, double damping, const std::string &where,
-                       const std::string &law)
+                       const std::string &law, bool tangential)
 {
   if (contact_time == 0.0 || contact < contact_time) {
     contact_time = contact;
@@ -57,17 +69,21 @@ void ContactTimes::add(double contact, double damping, const std::string &where,
   if (damping_time == 0.0 || damping < damping_time) {
     damping_time = damping;
     damping_where = where;
+    tangential_damping = tangential;
   }
 }
 
 void ContactTimes::add_contact(LAMMPS *lmp, const EllipsoidDep::ForceLaw &law,
                                double effective_radius, double effective_mass,
-                               double impact_speed, const std::string &where)
+                               double tangential_mass, double impact_speed,
+                               const std::string &where)
 {
   const double ftm2v = lmp->force->ftm2v;
+  const double normal = law.damping_time(effective_radius, effective_mass, impact_speed, ftm2v);
+  const double tangential = law.tangential_damping_time(effective_radius, effective_mass,
+                                                        tangential_mass, impact_speed, ftm2v);
   add(law.contact_time(effective_radius, effective_mass, impact_speed, ftm2v),
-      law.damping_time(effective_radius, effective_mass, impact_speed, ftm2v), where,
-      law.elastic_law());
+      std::min(normal, tangential), where, law.elastic_law(), tangential < normal);
 }
 
 namespace {
@@ -102,8 +118,10 @@ void LAMMPS_NS::report_contact_times(LAMMPS *lmp, const std::string &who,
   if (changed(times.damping_time, last_reported.damping_time)) {
     utils::logmesg(lmp,
                    "{}: damping number {:.3g} ({}, impact speed {:.6g}): the time step over "
-                   "the damping time m*/gamma {:.6g} at the deepest overlap\n",
-                   who, number, times.damping_where, speed, times.damping_time);
+                   "the damping time {} {:.6g} at the {}\n",
+                   who, number, times.damping_where, speed,
+                   times.tangential_damping ? "m_t/gamma_t" : "m*/gamma", times.damping_time,
+                   times.tangential_damping ? "peak force (tangential)" : "deepest overlap");
     last_reported.damping_time = times.damping_time;
   }
   if (number > DAMPING_NUMBER_BOUND)

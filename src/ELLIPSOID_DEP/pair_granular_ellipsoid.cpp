@@ -337,8 +337,8 @@ bool PairGranularEllipsoid::law_of_pair(int i, int j, ForceLaw &law, std::string
 
 /* ----------------------------------------------------------------------
    shortest Hertz contact and damping times over the type pairs with atoms: the lightest
-   atoms and the flattest surfaces of each type, at the impact speed (keyword, or twice the
-   fastest atom)
+   atoms, the flattest surfaces and the largest rotational compliances of each type, at the
+   impact speed (keyword, or twice the fastest atom)
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::update_contact_times()
@@ -355,7 +355,8 @@ void PairGranularEllipsoid::update_contact_times()
       if (!law_of_pair(i, j, law, refusal)) continue;    // init_one reports it
       const double radius = effective_radius(scales.flattest_radius[i], scales.flattest_radius[j]);
       const double mass = mi * mj / (mi + mj);
-      times.add_contact(lmp, law, radius, mass, speed, fmt::format("types {} {}", i, j));
+      const double sliding = tangential_mass(mi, scales.compliance[i], mj, scales.compliance[j]);
+      times.add_contact(lmp, law, radius, mass, sliding, speed, fmt::format("types {} {}", i, j));
     }
   contact_time = times.contact_time;
   damping_time = std::isfinite(times.damping_time) ? times.damping_time : 0.0;

@@ -11,6 +11,7 @@
 
 #include "ellipsoid_shape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -168,6 +169,15 @@ double PourSampler::smallest_semi_axis() const
 }
 
 // ab/c = r (eta zeta^2)^(2/3) grows with r, eta and zeta
+double PourSampler::largest_rotational_compliance() const
+{
+  double largest = 0.0;
+  for (double eta : {dist.eta * (1.0 - dist.delta_eta), dist.eta * (1.0 + dist.delta_eta)})
+    for (double zeta : {dist.zeta * (1.0 - dist.delta_zeta), dist.zeta * (1.0 + dist.delta_zeta)})
+      largest = std::max(largest, rotational_compliance(eta * zeta, zeta, 1.0));
+  return largest;
+}
+
 double PourSampler::flattest_radius() const
 {
   const double eta_max = dist.eta * (1.0 + dist.delta_eta);

@@ -58,6 +58,7 @@ class PourSampler {
   double largest_semi_axis() const;                     // a of rmax, eta_max, zeta_max
   double smallest_semi_axis() const;                    // c of rmin, eta_max, zeta_max
   double flattest_radius() const;    // largest ab/c: that of rmax, eta_max, zeta_max
+  double largest_rotational_compliance() const;    // over the corners of the shape ranges
 
  private:
   PourDistribution dist;

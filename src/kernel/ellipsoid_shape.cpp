@@ -5,7 +5,11 @@
 
 #include "ellipsoid_shape.h"
 
+#include <algorithm>
+#include <array>
+#include <functional>
 #include <limits>
+#include <utility>
 
 namespace EllipsoidDep {
 
@@ -95,6 +99,27 @@ double ellipsoid_slab_volume(const Ellipsoid &e, double zlo, double zhi)
   if (!(t2 > t1)) return 0.0;
   const double integral = (t2 - t1) - (t2 * t2 * t2 - t1 * t1 * t1) / 3.0;    // in [0, 4/3]
   return 0.75 * e.volume() * integral;
+}
+
+double rotational_compliance(double a, double b, double c)
+{
+  // In the body frame I_k = m (s_j^2 + s_l^2) / 5 and q = sum_k 5 w_k^2 / (s_j^2 + s_l^2), w =
+  // r x t. Each w_k^2 <= r_j^2 + r_l^2 <= max(s_j, s_l)^2 (r on the surface, |t| = 1), and
+  // sum_k w_k^2 <= |r|^2 <= max(s)^2: filling the largest weights first bounds q.
+  const double s2[3] = {a * a, b * b, c * c};
+  std::array<std::pair<double, double>, 3> axes;    // (weight, cap) per axis of rotation
+  for (int k = 0; k < 3; k++) {
+    const double sj = s2[(k + 1) % 3], sl = s2[(k + 2) % 3];
+    axes[k] = {5.0 / (sj + sl), std::max(sj, sl)};
+  }
+  std::sort(axes.begin(), axes.end(), std::greater<>());
+  double budget = std::max(s2[0], std::max(s2[1], s2[2])), q = 0.0;
+  for (const auto &[weight, cap] : axes) {
+    const double take = std::min(cap, budget);
+    q += weight * take;
+    budget -= take;
+  }
+  return q;
 }
 
 }    // namespace EllipsoidDep

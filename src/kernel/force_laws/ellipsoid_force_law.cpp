@@ -40,6 +40,19 @@ double ForceLaw::damping_time(double effective_radius, double effective_mass, do
   });
 }
 
+double ForceLaw::tangential_damping_time(double effective_radius, double effective_mass,
+                                         double tangential_mass, double impact_speed,
+                                         double ftm2v) const
+{
+  const double peak = visit_model(normal, [&](const auto &model) {
+    return model.peak_force(effective_radius, effective_mass, impact_speed, ftm2v);
+  });
+  const double gamma = visit_model(tangential, [&](const auto &model) {
+    return model.damping_coefficient(peak);
+  });
+  return gamma > 0.0 ? tangential_mass / ftm2v / gamma : HUGE_VAL;
+}
+
 const char *ForceLaw::elastic_law() const
 {
   return visit_model(normal, [](const auto &model) {
@@ -84,7 +97,7 @@ ContactForce ForceLaw::compute(const ContactGeometry &geometry, const ContactMot
   double *const rolling_history = history ? tangential_history + history_size_of(tangential)
                                           : nullptr;
   visit_model(rolling, [&](const auto &model) {
-    model.add_torque(n, motion, geometry.effective_radius, fn_friction, rolling_history, out);
+    model.add_torque(n, motion, geometry.effective_radius, fn_friction, dt, rolling_history, out);
   });
   return out;
 }

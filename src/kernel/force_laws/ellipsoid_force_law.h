@@ -59,6 +59,12 @@ struct ForceLaw {
   // damping number, small
   double damping_time(double effective_radius, double effective_mass, double impact_speed,
                       double ftm2v = 1.0) const;
+  // m_t / gamma_t of the tangential model at the peak normal force of that impact (HUGE_VAL
+  // when it does not damp). tangential_mass: the effective mass for sliding at the contact,
+  // rotation included (rotational_compliance in ellipsoid_shape.h); the same bound on dt
+  double tangential_damping_time(double effective_radius, double effective_mass,
+                                 double tangential_mass, double impact_speed,
+                                 double ftm2v = 1.0) const;
   // the name reports give the contact time ("Hertz")
   const char *elastic_law() const;
 };
@@ -90,7 +96,8 @@ using MaterialLookup = std::function<std::string(const std::string &name, Materi
 // Parses the force-law words shared by pair_coeff and the wall fix:
 //   hertz kn K | hertz/material E nu e | hertz/material NAME
 //   | hertz/material E e nu damping coeff_restitution   (LAMMPS pair granular's order)
-//   [tangential none | viscous mu | history kt mu] [rolling none | constant mu_r]
+//   [tangential none | viscous mu | history kt mu]
+//   [rolling none | constant mu_r | sds k_r gamma_r mu_r]
 //   [limit_damping]
 // Returns the number of words used; on error returns -1 and sets error to a message that
 // names the offending word (callers turn it into a LAMMPS ERROR). Stops at the first word it

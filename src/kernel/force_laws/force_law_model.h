@@ -12,10 +12,11 @@
    and the equation of its force as a comment. What each family's models answer:
      normal      normal_force(R*, xi, sqrt(xi), dxi/dt, m*): F_n > 0 repulsive; and, for a
                  head-on impact at relative normal speed v (ftm2v: see ellipsoid_force_law.h)
-                 stiffness(R*), deepest_overlap, contact_time, damping_time; ELASTIC_LAW, the
-                 name reports give its contact time ("Hertz")
-     tangential  add_force(n, v_t, max(F_n, 0), dt, its history, force on i)
-     rolling     add_torque(n, motion, R*, max(F_n, 0), its history, ContactForce)
+                 stiffness(R*), deepest_overlap, peak_force, contact_time, damping_time;
+                 ELASTIC_LAW, the name reports give its contact time ("Hertz")
+     tangential  add_force(n, v_t, max(F_n, 0), dt, its history, force on i);
+                 damping_coefficient(F_n), its dF_t / dv_t at the normal force F_n (0: none)
+     rolling     add_torque(n, motion, R*, max(F_n, 0), dt, its history, ContactForce)
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_FORCE_LAW_MODEL_H

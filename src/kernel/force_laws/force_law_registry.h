@@ -15,6 +15,7 @@
 #include "normal_hertz_material.h"
 #include "rolling_constant.h"
 #include "rolling_none.h"
+#include "rolling_sds.h"
 #include "tangential_history.h"
 #include "tangential_none.h"
 #include "tangential_viscous.h"
@@ -25,7 +26,7 @@ namespace EllipsoidDep {
 
 using NormalModel = std::variant<HertzNormal, HertzMaterialNormal>;
 using TangentialModel = std::variant<NoTangential, ViscousTangential, HistoryTangential>;
-using RollingModel = std::variant<NoRolling, ConstantRolling>;
+using RollingModel = std::variant<NoRolling, ConstantRolling, SdsRolling>;
 
 }    // namespace EllipsoidDep
 

@@ -11,6 +11,7 @@
      deepest overlap  xi_max = (5 m v^2 / (4 k))^(2/5)
      contact time     t_c = 2 xi_max / v  int_0^1 (1 - u^(5/2))^(-1/2) du
                           = 2 (2/5) B(2/5, 1/2) xi_max / v  ~ 3.218 (m^2 / (k^2 v))^(1/5)
+     peak force       k xi_max^(3/2), the elastic force there
      damping time     m / gamma(R*, xi_max, m*), HUGE_VAL without damping: velocity Verlet
                       integrates a damper stably only for dt below twice it. gamma takes m*
                       in mass units as given (LAMMPS pair granular's convention for the
@@ -45,6 +46,13 @@ template <class Model> struct HertzElastic {
   {
     return hertz_deepest_overlap(model().stiffness(effective_radius), effective_mass / ftm2v,
                                  impact_speed);
+  }
+  double peak_force(double effective_radius, double effective_mass, double impact_speed,
+                    double ftm2v) const
+  {
+    const double overlap =
+        deepest_overlap(effective_radius, effective_mass, impact_speed, ftm2v);
+    return model().stiffness(effective_radius) * overlap * std::sqrt(overlap);
   }
   double contact_time(double effective_radius, double effective_mass, double impact_speed,
                       double ftm2v) const

@@ -15,8 +15,8 @@ struct NoRolling {
   static constexpr int HISTORY_SIZE = 0;
 
   void add_torque(const Vec3 & /*normal*/, const ContactMotion & /*motion*/,
-                  double /*effective_radius*/, double /*fn_friction*/, double * /*history*/,
-                  ContactForce & /*out*/) const
+                  double /*effective_radius*/, double /*fn_friction*/, double /*dt*/,
+                  double * /*history*/, ContactForce & /*out*/) const
   {
   }
 };

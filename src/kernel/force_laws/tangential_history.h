@@ -27,6 +27,8 @@ struct HistoryTangential {
   static constexpr int DISPLACEMENT = 0;    // s, a Vec3
   static constexpr int HISTORY_SIZE = DISPLACEMENT + Vec3::SizeAtCompileTime;
 
+  double damping_coefficient(double /*normal_force*/) const { return 0.0; }    // no dashpot
+
   void add_force(const Vec3 &n, const Vec3 &v_tangent, double fn_friction, double dt,
                  double *history, Vec3 &force) const
   {

@@ -6,6 +6,9 @@
 
    v_t the tangential part of the velocity of i relative to j at the contact; mu in
    time/length: a viscous friction whose coefficient grows with the load. No history.
+   Its damping coefficient mu F_n is largest at an impact's peak force: the time step must stay
+   below the tangential damping time m_t / (mu F_n) there (ForceLaw::tangential_damping_time),
+   or the explicit update turns the friction into a source of energy.
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_TANGENTIAL_VISCOUS_H
@@ -22,6 +25,9 @@ struct ViscousTangential {
   using Row = ParameterRow<ViscousTangential>;
   static constexpr std::array ROWS{Row{"mu", &ViscousTangential::mu, NON_NEGATIVE, Mix::Geometric}};
   static constexpr int HISTORY_SIZE = 0;
+
+  // dF_t / dv_t at the normal force F_n
+  double damping_coefficient(double normal_force) const { return mu * normal_force; }
 
   void add_force(const Vec3 & /*normal*/, const Vec3 &v_tangent, double fn_friction, double /*dt*/,
                  double * /*history*/, Vec3 &force) const
