@@ -227,7 +227,8 @@ void FixPourEllipsoid::check_contact_times(bool run_start)
                       tangential_mass(mass, compliance, mass, compliance), speed,
                       fmt::format("types {} {}", ntype, ntype));
   // one against every wall acting on the poured particles (their mask: all and this group)
-  for (const auto *fix : modify->get_fix_by_style("^wall/gran/(region/)?ellipsoid$")) {
+  // (LAMMPS's style patterns have no groups: the region wall is a FixWallGranEllipsoid too)
+  for (const auto *fix : modify->get_fix_by_style("^wall/gran/")) {
     const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
     if (wall && (fix->groupbit & (1 | groupbit)))
       times.add_contact(lmp, wall->force_law(), radius, mass, tangential_mass(mass, compliance),

@@ -325,6 +325,24 @@ def test_pour_into_an_empty_box_checks_the_time_step(tmp_path):
     assert POUR_LINE.search(safe) and "WARNING" not in safe, safe
 
 
+def test_pour_checks_its_particles_against_the_walls(tmp_path):
+    """A floor 20 times stiffer than the pair: the lightest particle's contact with it is the
+    shortest, and the pour's report names the wall (its style pattern once matched no wall)."""
+    stiff = h.new_lammps(tmp_path, "stiff")
+    stiff.commands_list([
+        "units lj", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
+        "region box block 0 8 0 8 0 100", "create_box 1 box", "pair_style granular/ellipsoid",
+        "fix g all gravity 1.0 vector 0 0 -1", f"pair_coeff * * hertz {POUR_KN} 200",
+        f"fix w all wall/gran/region/ellipsoid hertz {20 * POUR_KN} 200 region box",
+        "region ins block 0 8 0 8 20 29",
+        "fix p all pour/ellipsoid 100 1 4767 region ins size mean 0.5 delta_r 0.2 shape 1.4 1.4 "
+        "vol 0.15 200 vel 0 0 0 0 -60", "timestep 1.0e-5", "run 0"])
+    log = h.read_log(stiff)
+    stiff.close()
+    assert re.search(r"^Fix pour/ellipsoid: Hertz contact time \S+ \(type 1 on fix w, impact "
+                     r"speed \S+\)", log, re.M), log
+
+
 def test_pour_checks_again_when_its_region_rises(tmp_path):
     """A region rising at 43 per time unit drops later batches from higher up: the check at
     run start passes (top 4: impact speed 2.83, 11.1 steps per contact) and one at a later
