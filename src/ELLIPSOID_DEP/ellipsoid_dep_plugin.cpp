@@ -12,6 +12,7 @@
 #include "compute_orient_histo.h"
 #include "compute_packing_ellipsoid.h"
 #include "compute_packing_profile.h"
+#include "compute_unbalanced_force.h"
 #include "fix_nve_ellipsoid.h"
 #include "fix_pour_ellipsoid.h"
 #include "fix_wall_gran_ellipsoid.h"
@@ -75,6 +76,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "compute", "contact/histo",
                  "histogram of contact-normal angles with +z",
                  (void *) &create_with_args<ComputeContactHisto, Compute>);
+  register_style(reg, lmp, handle, "compute", "unbalanced/force",
+                 "unbalanced force ratio: mean net force over mean contact force",
+                 (void *) &create_with_args<ComputeUnbalancedForce, Compute>);
   register_style(reg, lmp, handle, "compute", "force/histo",
                  "distribution of the normal contact forces, P(f/<f>)",
                  (void *) &create_with_args<ComputeForceHisto, Compute>);

@@ -39,8 +39,10 @@ def test_every_law_pours_the_default_scene_without_loss(tmp_path, law, dr):
     # the batch lands within t = (sqrt(vdrop^2 + 2 g z_top) - vdrop) / g < 2.2 (z_top < 20)
     lmp = h.deposit_lammps(out, {"N": "100", "dr": dr, "vdrop": "8", "tangential": LAWS[law],
                                  "image": "0", "out": str(out), "chunk": "1000",
-                                 "maxchunks": "1000", "ketol": "1e9", "flytol": "1e9"})
-    # (ketol and flytol so large that the run stops after its first chunk: run on to t = 3)
+                                 "maxchunks": "1000", "ketol": "1e9", "flytol": "1e9",
+                                 "unbtol": "1e9"})
+    # (ketol, flytol and unbtol so large that the run stops after its first chunk: run on to
+    # t = 3)
     dt = lmp.extract_global("dt")
     ztop = lmp.extract_variable("pz1")
     steps = math.ceil(3.0 / dt) - lmp.extract_global("ntimestep")
