@@ -8,6 +8,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "math_const.h"
 #include "update.h"
 
@@ -90,14 +91,15 @@ int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
   return 9;
 }
 
-// the servo's target force: a stress acts on the box's cross-section normal to the wall
+// the servo's target force: a stress acts on the box's cross-section normal to the wall;
+// LAMMPS's pressure units are force / area times nktv2p (not 1 in real, metal, electron)
 double FixWallGranEllipsoid::servo_target() const
 {
   if (!motion.stress) return motion.target;
   double area = 1.0;
   for (int d = 0; d < 3; d++)
     if (walls[0].normal[d] == 0.0) area *= domain->prd[d];
-  return motion.target * area;
+  return motion.target * area / force->nktv2p;
 }
 
 // the walls' offsets and velocity at this step: wiggle and shear as fix wall/gran's, the
@@ -173,6 +175,9 @@ void FixWallGranEllipsoid::restart(char *buf)
   motion.speed = list[3];
   motion.force = list[4];
   motion.measured = true;
+  // the servo's position is its state; wiggled and sheared walls stay where the command
+  // puts them (the wiggle is placed from them at every step)
+  if (motion.kind != Motion::Kind::Servo) return;
   for (std::size_t k = 0; k < walls.size(); k++) walls[k].offset = list[5 + k];
-  if (motion.kind == Motion::Kind::Servo) wall_velocity = motion.speed * walls[0].normal;
+  wall_velocity = motion.speed * walls[0].normal;
 }

@@ -165,3 +165,28 @@ def test_contacts_array_as_fix_wall_gran():
     assert touching[7] == pytest.approx(RADIUS, rel=1e-12)
     assert np.all(free == 0.0)
     np.testing.assert_allclose(wall, -touching[1:4], rtol=1e-12, atol=1e-15)
+
+
+def test_restart_keeps_the_commands_walls_for_shear(tmp_path):
+    """A shearing floor moved from z = 0 to z = -0.5 when the fix is given again after
+    read_restart is at -0.5 (the restart file holds the moving walls' state; only a servo's
+    position is state): the sphere resting on the old floor is free."""
+    restart = tmp_path / "shear.restart"
+    lmp = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                          f"{REST}", "shear x 0.1", z0=0.499, vz=0.0)
+    lmp.command("run 0 post no")
+    resting = lmp.extract_fix("w", 0, 1, 2)
+    lmp.command(f"write_restart {restart}")
+    lmp.close()
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        atom_style ellipsoid
+        read_restart {restart}
+        comm_modify vel yes
+        fix w all wall/gran/ellipsoid hertz/material {E} {NU} {REST} zplane -0.5 NULL shear x 0.1
+        run 0 post no
+        """)
+    moved = lmp.extract_fix("w", 0, 1, 2)
+    lmp.close()
+    assert resting < 0.0    # pressed down by the sphere
+    assert moved == 0.0
