@@ -102,6 +102,11 @@ double FixWallGranEllipsoid::servo_target() const
   return motion.target * area / force->nktv2p;
 }
 
+double FixWallGranEllipsoid::simulation_time() const
+{
+  return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
+}
+
 // the walls' offsets and velocity at this step: wiggle and shear as fix wall/gran's, the
 // servo by one step of its controller
 void FixWallGranEllipsoid::move_walls()
@@ -119,7 +124,7 @@ void FixWallGranEllipsoid::move_walls()
     wall_velocity[motion.dim] = motion.vshear;
     return;
   }
-  const double phase = motion.omega * (update->ntimestep - motion.time_origin) * update->dt;
+  const double phase = motion.omega * (simulation_time() - motion.time_origin);
   const double shift = motion.amplitude - motion.amplitude * std::cos(phase);
   for (std::size_t k = 0; k < walls.size(); k++)
     walls[k].offset = rest_offset[k] + walls[k].normal[motion.dim] * shift;
@@ -152,7 +157,7 @@ void FixWallGranEllipsoid::measure_servo_force()
 void FixWallGranEllipsoid::write_restart(FILE *fp)
 {
   std::vector<double> list = {static_cast<double>(motion.kind), static_cast<double>(walls.size()),
-                              static_cast<double>(motion.time_origin), motion.speed,
+                              motion.time_origin, motion.speed,
                               motion.force};
   for (const WallSurface &w : walls) list.push_back(w.offset);
   if (comm->me == 0) {
@@ -171,7 +176,7 @@ void FixWallGranEllipsoid::restart(char *buf)
                "Fix wall/gran/ellipsoid {}: the restart file's walls move otherwise (another "
                "motion keyword or number of walls); give the fix as it was written, or a new ID",
                id);
-  motion.time_origin = static_cast<bigint>(list[2]);
+  motion.time_origin = list[2];
   motion.speed = list[3];
   motion.force = list[4];
   motion.measured = true;

@@ -122,7 +122,7 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg,
                       "other walls in a fix of their own)");
   for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
   restart_global = motion.kind != Motion::Kind::None ? 1 : 0;
-  motion.time_origin = update->ntimestep;
+  motion.time_origin = simulation_time();
   wall_velocity = Vec3::Zero();
   allocate_walls();
 }

@@ -190,3 +190,19 @@ def test_restart_keeps_the_commands_walls_for_shear(tmp_path):
     lmp.close()
     assert resting < 0.0    # pressed down by the sphere
     assert moved == 0.0
+
+
+def test_wiggle_keeps_its_phase_when_the_timestep_changes():
+    """A sphere resting on a slowly wiggling floor (amplitude 0.01, period 1: its acceleration
+    0.39 below gravity's 1, so it stays in contact): 2000 steps of 1e-4, then 2000 of 5e-5.
+    The floor (the contact point on it, column 7 of contacts) is at A (1 - cos(omega t)) at
+    the time t = 0.3, not at the phase of 4000 steps of the new timestep."""
+    lmp = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                          f"{REST}", "wiggle z 0.01 1.0 contacts", z0=0.499, vz=0.0)
+    lmp.command("run 2000 post no")
+    lmp.command(f"timestep {DT / 2}")
+    lmp.command("run 2000 post no")
+    row = np.array(lmp.numpy.extract_fix("w", 1, 2)[0]).copy()
+    lmp.close()
+    assert row[0] == 1.0
+    assert row[6] == pytest.approx(0.01 * (1 - math.cos(2 * math.pi * 0.3)), rel=1e-9)
