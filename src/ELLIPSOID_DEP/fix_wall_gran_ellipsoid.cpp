@@ -37,6 +37,7 @@ FixWallGranEllipsoid::~FixWallGranEllipsoid()
   if (allocated && size_history) atom->delete_callback(id, Atom::RESTART);
   memory->destroy(history_one);
   memory->destroy(array_atom);
+  delete[] extlist;
 }
 
 /* ---------------------------------------------------------------------- */

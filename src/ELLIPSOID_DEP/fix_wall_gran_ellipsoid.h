@@ -71,7 +71,8 @@ class FixWallGranEllipsoid : public Fix {
   std::vector<EllipsoidDep::WallSurface> walls;
   // wiggle or shear, as fix wall/gran's: every wall of the fix moves along dim; a wiggled
   // wall normal to dim is at rest_offset + A (1 - cos(omega t)) along its normal's dim
-  // component, t from the step the fix was defined at
+  // component, t the simulation time since the fix was defined (a timestep changed between
+  // runs keeps the phase)
   // servo: the one wall moves along its normal n at u = G (F_target - F), |u| <= vmax, F the
   // normal force the particles exerted on it at the previous step, or that force low-pass
   // filtered with the time constant filter_time (> 0: the loop then stays away from the time
@@ -80,7 +81,7 @@ class FixWallGranEllipsoid : public Fix {
     enum class Kind { None, Wiggle, Shear, Servo } kind = Kind::None;
     int dim = -1;
     double amplitude = 0.0, omega = 0.0, vshear = 0.0;
-    bigint time_origin = 0;
+    double time_origin = 0.0;    // the simulation time the fix was defined at
     bool stress = false;          // servo target: a stress (times the box's cross-section)
     double target = 0.0, gain = 0.0, vmax = 0.0;
     double force = 0.0;           // servo: its measure of the particles' push on the wall
@@ -96,6 +97,7 @@ class FixWallGranEllipsoid : public Fix {
   int parse_motion(int iarg, int narg, char **arg);
   int parse_servo(int iarg, int narg, char **arg);
   void move_walls();
+  double simulation_time() const;    // LAMMPS's thermo keyword time
   void measure_servo_force();
   // the contacts keyword: fix wall/gran's per-atom array of 8 columns
   static constexpr int CONTACT_COLUMNS = 8;

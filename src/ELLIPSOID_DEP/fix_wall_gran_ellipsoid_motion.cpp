@@ -8,6 +8,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "math_const.h"
 #include "update.h"
 
@@ -90,14 +91,20 @@ int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
   return 9;
 }
 
-// the servo's target force: a stress acts on the box's cross-section normal to the wall
+// the servo's target force: a stress acts on the box's cross-section normal to the wall;
+// LAMMPS's pressure units are force / area times nktv2p (not 1 in real, metal, electron)
 double FixWallGranEllipsoid::servo_target() const
 {
   if (!motion.stress) return motion.target;
   double area = 1.0;
   for (int d = 0; d < 3; d++)
     if (walls[0].normal[d] == 0.0) area *= domain->prd[d];
-  return motion.target * area;
+  return motion.target * area / force->nktv2p;
+}
+
+double FixWallGranEllipsoid::simulation_time() const
+{
+  return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
 }
 
 // the walls' offsets and velocity at this step: wiggle and shear as fix wall/gran's, the
@@ -117,7 +124,7 @@ void FixWallGranEllipsoid::move_walls()
     wall_velocity[motion.dim] = motion.vshear;
     return;
   }
-  const double phase = motion.omega * (update->ntimestep - motion.time_origin) * update->dt;
+  const double phase = motion.omega * (simulation_time() - motion.time_origin);
   const double shift = motion.amplitude - motion.amplitude * std::cos(phase);
   for (std::size_t k = 0; k < walls.size(); k++)
     walls[k].offset = rest_offset[k] + walls[k].normal[motion.dim] * shift;
@@ -150,7 +157,7 @@ void FixWallGranEllipsoid::measure_servo_force()
 void FixWallGranEllipsoid::write_restart(FILE *fp)
 {
   std::vector<double> list = {static_cast<double>(motion.kind), static_cast<double>(walls.size()),
-                              static_cast<double>(motion.time_origin), motion.speed,
+                              motion.time_origin, motion.speed,
                               motion.force};
   for (const WallSurface &w : walls) list.push_back(w.offset);
   if (comm->me == 0) {
@@ -169,10 +176,13 @@ void FixWallGranEllipsoid::restart(char *buf)
                "Fix wall/gran/ellipsoid {}: the restart file's walls move otherwise (another "
                "motion keyword or number of walls); give the fix as it was written, or a new ID",
                id);
-  motion.time_origin = static_cast<bigint>(list[2]);
+  motion.time_origin = list[2];
   motion.speed = list[3];
   motion.force = list[4];
   motion.measured = true;
+  // the servo's position is its state; wiggled and sheared walls stay where the command
+  // puts them (the wiggle is placed from them at every step)
+  if (motion.kind != Motion::Kind::Servo) return;
   for (std::size_t k = 0; k < walls.size(); k++) walls[k].offset = list[5 + k];
-  if (motion.kind == Motion::Kind::Servo) wall_velocity = motion.speed * walls[0].normal;
+  wall_velocity = motion.speed * walls[0].normal;
 }

@@ -122,7 +122,7 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg,
                       "other walls in a fix of their own)");
   for (const WallSurface &w : walls) rest_offset.push_back(w.offset);
   restart_global = motion.kind != Motion::Kind::None ? 1 : 0;
-  motion.time_origin = update->ntimestep;
+  motion.time_origin = simulation_time();
   wall_velocity = Vec3::Zero();
   allocate_walls();
 }
@@ -215,7 +215,11 @@ void FixWallGranEllipsoid::allocate_walls()
   // a servo's wall also reports where it is (its coordinate along its normal's dimension)
   size_vector = 3 * nwalls + (motion.kind == Motion::Kind::Servo ? 1 : 0);
   global_freq = 1;
-  extvector = 1;
+  // LAMMPS's extlist: the forces are extensive (thermo_modify norm divides them by the atom
+  // count), the servo's coordinate is not
+  extvector = -1;
+  extlist = new int[size_vector];
+  for (int n = 0; n < size_vector; n++) extlist[n] = n < 3 * nwalls ? 1 : 0;
   create_attribute = 1;
   dynamic_group_allow = 1;
 

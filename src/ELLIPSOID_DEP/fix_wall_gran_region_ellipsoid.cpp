@@ -1,9 +1,11 @@
 /* ----------------------------------------------------------------------
    ELLIPSOID_DEP: fix wall/gran/region/ellipsoid (see doc/fix_wall_gran_region_ellipsoid.rst)
 
-   The region's faces are found once in the region's own frame (region_faces(), the _faces
-   file) and placed at every step by the region's move and rotate transform; a face's velocity
-   at a point is the region's, as LAMMPS's Region::velocity_contact() gives it.
+   The region's faces are found in the region's own frame (region_faces(), the _faces file)
+   at the fix's definition and again at every run (the region, looked up by its ID, may have
+   been defined again), and placed at every step by the region's move and rotate transform; a
+   face's velocity at a point is the region's, as LAMMPS's Region::velocity_contact() gives
+   it. Its reach across periodic boundaries: the _periodic file.
 ------------------------------------------------------------------------- */
 
 #include "fix_wall_gran_region_ellipsoid.h"
@@ -14,6 +16,9 @@
 #include "error.h"
 #include "region.h"
 
+#include "granular_ellipsoid_atoms.h"
+
+#include <algorithm>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -22,44 +27,72 @@ using namespace EllipsoidDep;
 /* ---------------------------------------------------------------------- */
 
 FixWallGranRegionEllipsoid::FixWallGranRegionEllipsoid(LAMMPS *lmp, int narg, char **arg) :
-    FixWallGranEllipsoid(lmp, narg, arg, true), region(nullptr), motion_reset(false)
+    FixWallGranEllipsoid(lmp, narg, arg, true), region(nullptr), motion_reset(false), reach(0.0)
 {
-  region = domain->get_region_by_id(region_id);
-  if (!region)
-    error->all(FLERR, "Region {} for fix wall/gran/region/ellipsoid does not exist", region_id);
-  faces = region_faces();
+  region = find_region();
+  faces = faces_at_rest();
   walls = faces;
-  check_periodic_crossing();
+  // a moving region is checked where it is, at setup and at every step
+  if (!region->dynamic_check()) check_periodic_crossing();
   restart_global = 1;    // the region's motion state, as LAMMPS's fix wall/gran/region
   wall_velocity = Vec3::Zero();
   allocate_walls();
 }
 
+Region *FixWallGranRegionEllipsoid::find_region()
+{
+  Region *found = domain->get_region_by_id(region_id);
+  if (!found)
+    error->all(FLERR, "Region {} for fix wall/gran/region/ellipsoid does not exist", region_id);
+  return found;
+}
+
+// region_faces() probes the region through its transform: at rest (no displacement, no
+// angle) the same region gives the same faces at every run
+std::vector<WallSurface> FixWallGranRegionEllipsoid::faces_at_rest()
+{
+  const double placed[4] = {region->dx, region->dy, region->dz, region->theta};
+  region->dx = region->dy = region->dz = region->theta = 0.0;
+  const std::vector<WallSurface> found = region_faces();
+  region->dx = placed[0];
+  region->dy = placed[1];
+  region->dz = placed[2];
+  region->theta = placed[3];
+  return found;
+}
+
 /* ----------------------------------------------------------------------
-   the region again (it may have been deleted or replaced between runs)
+   the region by its ID at every run, as LAMMPS's fix wall/gran/region: it may have been
+   deleted and defined again between runs, at its old address or at another one. Its faces
+   are found again; other faces (or another region) rebuild the walls, restart the wall
+   contacts' histories (they belonged to the old faces) and report the new walls at setup.
 ------------------------------------------------------------------------- */
 
 void FixWallGranRegionEllipsoid::init()
 {
   FixWallGranEllipsoid::init();
-  Region *current = domain->get_region_by_id(region_id);
-  if (!current)
-    error->all(FLERR, "Region {} for fix wall/gran/region/ellipsoid does not exist", region_id);
-  if (current != region) {
-    region = current;
-    const std::vector<WallSurface> rebuilt = region_faces();
-    if (rebuilt.size() != faces.size())
-      error->all(FLERR,
-                 "Fix wall/gran/region/ellipsoid: region {} now has {} faces, not {}; define "
-                 "the fix again",
-                 region_id, rebuilt.size(), faces.size());
+  Region *previous = region;
+  region = find_region();
+  const std::vector<WallSurface> rebuilt = faces_at_rest();
+  if (rebuilt.size() != faces.size())
+    error->all(FLERR,
+               "Fix wall/gran/region/ellipsoid: region {} now has {} faces, not {}; define "
+               "the fix again",
+               region_id, rebuilt.size(), faces.size());
+  const bool other_faces = rebuilt != faces;
+  if (other_faces || region != previous) {
     faces = rebuilt;
-    check_periodic_crossing();
+    walls = faces;    // a moving region's are placed at setup
+    if (other_faces && size_history)
+      for (int i = 0; i < atom->nlocal; i++) std::fill_n(history_one[i], size_history, 0.0);
+    setup_reported = false;
     if (comm->me == 0)
       error->warning(FLERR,
-                     "Region properties for region {} changed between runs, resetting its motion",
-                     region_id);
-    region->reset_vel();
+                     "Region {} for fix wall/gran/region/ellipsoid was defined again between "
+                     "runs: its walls are rebuilt{}{}",
+                     region_id, other_faces ? ", the wall contacts' histories restart" : "",
+                     region != previous ? ", its motion is reset" : "");
+    if (region != previous) region->reset_vel();
   }
   if (motion_reset) {
     if (comm->me == 0)
@@ -70,6 +103,23 @@ void FixWallGranRegionEllipsoid::init()
     region->reset_vel();
     motion_reset = false;
   }
+}
+
+/* ----------------------------------------------------------------------
+   the reach of the walls beyond a solid met from outside: the group's largest bounding
+   radius (a particle centre that far from the solid can touch it)
+------------------------------------------------------------------------- */
+
+void FixWallGranRegionEllipsoid::setup(int vflag)
+{
+  const EllipsoidAtoms atoms(atom);
+  double local = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) && atoms.has_shape(i))
+      local = std::max(local, atoms.bounding_radius(i));
+  MPI_Allreduce(&local, &reach, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (!region->dynamic_check()) check_periodic_crossing();
+  FixWallGranEllipsoid::setup(vflag);    // places a moving region's walls and checks them
 }
 
 /* ----------------------------------------------------------------------
@@ -101,6 +151,7 @@ void FixWallGranRegionEllipsoid::update_walls()
         w.frame.col(d) = (place(rest.center + rest.frame.col(d)) - w.center).normalized();
     }
   }
+  check_periodic_crossing();    // wherever the region moves
 }
 
 // LAMMPS's Region::velocity_contact: the translation's velocity plus omega x (x_c - rpoint)
@@ -130,38 +181,18 @@ bool FixWallGranRegionEllipsoid::reaches_walls(int i) const
 }
 
 /* ----------------------------------------------------------------------
-   a curved face that crosses a periodic boundary would act on one periodic image of a
-   particle and not on the other
-------------------------------------------------------------------------- */
-
-void FixWallGranRegionEllipsoid::check_periodic_crossing()
-{
-  for (const WallSurface &w : walls) {
-    if (w.shape == WallShape::Plane || w.shape == WallShape::Box) continue;
-    for (int d = 0; d < 3; d++) {
-      if (!domain->periodicity[d]) continue;
-      if (w.shape != WallShape::Sphere && std::fabs(w.axis[d]) == 1.0) continue;
-      if (w.center[d] - w.radius < domain->boxlo[d] || w.center[d] + w.radius > domain->boxhi[d])
-        error->all(FLERR,
-                   "Fix wall/gran/region/ellipsoid: region {}'s {} (radius {}) crosses the "
-                   "periodic boundary in {}; a wall across a periodic boundary would hold one "
-                   "image of a particle and not the other",
-                   region_id, region->style, w.radius, "xyz"[d]);
-    }
-  }
-}
-
-/* ----------------------------------------------------------------------
    restart: the region's motion state, as LAMMPS's fix wall/gran/region writes it
 ------------------------------------------------------------------------- */
 
 void FixWallGranRegionEllipsoid::write_restart(FILE *fp)
 {
+  // write_restart noinit skips init(): the region may have been deleted since
+  Region *current = find_region();
   if (comm->me) return;
   int len = 0;
-  region->length_restart_string(len);
+  current->length_restart_string(len);
   fwrite(&len, sizeof(int), 1, fp);
-  region->write_restart(fp);
+  current->write_restart(fp);
 }
 
 void FixWallGranRegionEllipsoid::restart(char *buf)

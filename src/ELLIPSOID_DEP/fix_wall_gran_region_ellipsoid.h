@@ -18,6 +18,7 @@ class FixWallGranRegionEllipsoid : public FixWallGranEllipsoid {
  public:
   FixWallGranRegionEllipsoid(class LAMMPS *, int, char **);
   void init() override;
+  void setup(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
 
@@ -27,14 +28,17 @@ class FixWallGranRegionEllipsoid : public FixWallGranEllipsoid {
   bool reaches_walls(int i) const override;
 
  private:
-  class Region *region;
+  class Region *region;    // looked up by its ID at every init (it may have been redefined)
   // the region's faces in its own frame (before move and rotate), LAMMPS's iwall order
   std::vector<EllipsoidDep::WallSurface> faces;
   bool motion_reset;    // the restart file's region motion did not match
+  double reach;         // the group's largest bounding radius at the last setup
+  class Region *find_region();
+  std::vector<EllipsoidDep::WallSurface> faces_at_rest();
   std::vector<EllipsoidDep::WallSurface> region_faces();
   bool cone_from_probes(const std::vector<EllipsoidDep::Vec3> &probes,
                         EllipsoidDep::WallSurface &w);
-  void check_periodic_crossing();
+  void check_periodic_crossing();    // the _periodic file
 };
 
 }    // namespace LAMMPS_NS

@@ -63,4 +63,12 @@ ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w)
   return degenerate;
 }
 
+bool operator==(const WallSurface &a, const WallSurface &b)
+{
+  return a.shape == b.shape && a.normal == b.normal && a.offset == b.offset &&
+      a.center == b.center && a.axis == b.axis && a.radius == b.radius && a.slope == b.slope &&
+      a.inside == b.inside && a.cap_lo == b.cap_lo && a.cap_hi == b.cap_hi &&
+      a.frame == b.frame && a.lower == b.lower && a.upper == b.upper;
+}
+
 }    // namespace EllipsoidDep

@@ -56,6 +56,9 @@ struct WallSurface {
 
 double wall_clearance(const WallSurface &w, const Vec3 &x);
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
+// the same surface, every field equal (a field added to WallSurface belongs here too)
+bool operator==(const WallSurface &a, const WallSurface &b);
+inline bool operator!=(const WallSurface &a, const WallSurface &b) { return !(a == b); }
 
 }    // namespace EllipsoidDep
 

@@ -5,7 +5,8 @@ ellipsoids against the side, the floor and the corner of a moving cylinder regio
 inside a sphere region, the domain split along x (`processors * 1 1`) through both regions:
 the per-atom forces and torques (gathered by ID), the per-atom contacts array and the fix's
 face forces after run 0 and after 40 steps (with tangential history, so that the history
-travels between ranks) equal those of a serial copy on every rank.
+travels between ranks), and the forces and positions after the region is defined again
+(narrower) and 40 steps more, equal those of a serial copy on every rank.
 """
 import math
 import os
@@ -58,6 +59,11 @@ def results(lmp, region):
         out[f"vector{steps}"] = np.array([lmp.extract_fix("w", 0, 1, k)
                                           for k in range(3 * faces)])
         out[f"x{steps}"] = np.array(lmp.gather_atoms("x", 1, 3)).reshape(n, 3)
+    # the region defined again between runs, narrower: every rank rebuilds the walls and
+    # restarts its atoms' wall histories
+    lmp.commands_string(f"region r delete\n{region.replace(' 1.5 ', ' 1.45 ')}\nrun 40")
+    for name in ("f", "x"):
+        out[f"{name}_again"] = np.array(lmp.gather_atoms(name, 1, 3)).reshape(n, 3)
     return out
 
 

@@ -165,3 +165,44 @@ def test_contacts_array_as_fix_wall_gran():
     assert touching[7] == pytest.approx(RADIUS, rel=1e-12)
     assert np.all(free == 0.0)
     np.testing.assert_allclose(wall, -touching[1:4], rtol=1e-12, atol=1e-15)
+
+
+def test_restart_keeps_the_commands_walls_for_shear(tmp_path):
+    """A shearing floor moved from z = 0 to z = -0.5 when the fix is given again after
+    read_restart is at -0.5 (the restart file holds the moving walls' state; only a servo's
+    position is state): the sphere resting on the old floor is free."""
+    restart = tmp_path / "shear.restart"
+    lmp = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                          f"{REST}", "shear x 0.1", z0=0.499, vz=0.0)
+    lmp.command("run 0 post no")
+    resting = lmp.extract_fix("w", 0, 1, 2)
+    lmp.command(f"write_restart {restart}")
+    lmp.close()
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        atom_style ellipsoid
+        read_restart {restart}
+        comm_modify vel yes
+        fix w all wall/gran/ellipsoid hertz/material {E} {NU} {REST} zplane -0.5 NULL shear x 0.1
+        run 0 post no
+        """)
+    moved = lmp.extract_fix("w", 0, 1, 2)
+    lmp.close()
+    assert resting < 0.0    # pressed down by the sphere
+    assert moved == 0.0
+
+
+def test_wiggle_keeps_its_phase_when_the_timestep_changes():
+    """A sphere resting on a slowly wiggling floor (amplitude 0.01, period 1: its acceleration
+    0.39 below gravity's 1, so it stays in contact): 2000 steps of 1e-4, then 2000 of 5e-5.
+    The floor (the contact point on it, column 7 of contacts) is at A (1 - cos(omega t)) at
+    the time t = 0.3, not at the phase of 4000 steps of the new timestep."""
+    lmp = sphere_on_floor("ellipsoid", f"fix w all wall/gran/ellipsoid hertz/material {E} {NU} "
+                          f"{REST}", "wiggle z 0.01 1.0 contacts", z0=0.499, vz=0.0)
+    lmp.command("run 2000 post no")
+    lmp.command(f"timestep {DT / 2}")
+    lmp.command("run 2000 post no")
+    row = np.array(lmp.numpy.extract_fix("w", 1, 2)[0]).copy()
+    lmp.close()
+    assert row[0] == 1.0
+    assert row[6] == pytest.approx(0.01 * (1 - math.cos(2 * math.pi * 0.3)), rel=1e-9)

