@@ -7,7 +7,8 @@
    within a sample spacing either side (to ~1e-7 of it) and finished by Newton's method on
    f' = 0 (the caller's analytic f', f''). On a closed interval a minimum at an end is one
    (f' pointing out of the interval there). A Newton iteration that does not settle is
-   reported (converged = false), never dropped.
+   reported (converged = false), never dropped; where it went uphill (a kink of f) the
+   golden section's point is kept.
 
    F has  double value(double x) const  and  void derivatives(double x, double &df,
    double &ddf) const.
@@ -70,6 +71,7 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
     }
     // a bracket that never left an end of the interval: the minimum may lie on it
     double x = from_lo && a == lo ? lo : from_hi && b == hi ? hi : 0.5 * (a + b);
+    const double bracketed = x;
     bool converged = false;
     for (int it = 0; it < NEWTON_STEPS && !converged; it++) {
       double df, ddf;
@@ -83,7 +85,9 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
       converged = std::fabs(next - x) <= 1e-12;
       x = next;
     }
-    const double value = f.value(x);
+    double value = f.value(x);
+    // an iteration that did not settle and went uphill (a kink): the bracket's point
+    if (!converged && value > f.value(bracketed)) x = bracketed, value = f.value(x);
     if (value < best.value) best = {x, value, converged};
   }
   return best;

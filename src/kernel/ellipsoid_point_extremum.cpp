@@ -103,8 +103,36 @@ SurfaceExtremum<N> nearest_surface_point(const Eigen::Matrix<double, N, 1> &a2,
                                          const Eigen::Matrix<double, N, 1> &x)
 {
   bool converged = false;
-  const double t = secular_root<N>(a2, x, 0.0, std::sqrt(a2.maxCoeff()) * x.norm(), false,
-                                   converged);
+  if (x.cwiseProduct(x).cwiseQuotient(a2).sum() > 1.0) {
+    const double t = secular_root<N>(a2, x, 0.0, std::sqrt(a2.maxCoeff()) * x.norm(), false,
+                                     converged);
+    return point_at<N>(a2, x, t, converged);
+  }
+  // inside: the root in (-A_min, 0]; hard case: no component along any smallest axis, and F
+  // stays below 1 down to -A_min (x on the medial plane: two nearest points, one is taken)
+  int smallest = 0;
+  for (int k = 1; k < N; k++)
+    if (a2[k] < a2[smallest]) smallest = k;
+  const double amin2 = a2[smallest];
+  bool hard = true;
+  double f_hard = 0.0;
+  for (int k = 0; k < N; k++) {
+    if (a2[k] == amin2) {
+      if (x[k] != 0.0) hard = false;
+    } else {
+      const double q = a2[k] - amin2;
+      f_hard += a2[k] * x[k] * x[k] / (q * q);
+    }
+  }
+  if (hard && f_hard <= 1.0) {
+    SurfaceExtremum<N> r;
+    for (int k = 0; k < N; k++)
+      r.point[k] = a2[k] == amin2 ? 0.0 : a2[k] * x[k] / (a2[k] - amin2);
+    r.point[smallest] = std::sqrt(amin2 * (1.0 - f_hard));
+    r.distance = (r.point - x).norm();
+    return r;
+  }
+  const double t = secular_root<N>(a2, x, -amin2, 0.0, false, converged);
   return point_at<N>(a2, x, t, converged);
 }
 

@@ -7,11 +7,13 @@
    stationary points of |y - x|^2 are y_k = A_k x_k / (A_k + t), with t a root of the secular
    equation F(t) = sum_k A_k x_k^2 / (A_k + t)^2 = 1. F is monotone on each interval below:
    - farthest point: the root in (-A_max - sqrt(A_max) |x|, -A_max);
-   - nearest point of a surface that x lies outside of: the root in (0, sqrt(A_max) |x|).
+   - nearest point of a surface that x lies outside of: the root in (0, sqrt(A_max) |x|);
+     of one that x lies inside of: the root in (-A_min, 0].
    Both are found by Newton's method kept inside a shrinking bracket (bisection when a step
    leaves it); the cap on iterations is reported (converged = false), never hidden.
    The farthest point's "hard case" (x has no component along the largest axes, e.g. a centre
-   on the ellipsoid's mid-plane) has t = -A_max and is handled in closed form.
+   on the ellipsoid's mid-plane) has t = -A_max and is handled in closed form; so has the
+   nearest point's from inside (no component along the smallest axes: t = -A_min).
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_POINT_EXTREMUM_H
@@ -31,7 +33,7 @@ template <int N> struct SurfaceExtremum {
 template <int N>
 SurfaceExtremum<N> farthest_surface_point(const Eigen::Matrix<double, N, 1> &squared_axes,
                                           const Eigen::Matrix<double, N, 1> &x);
-// x must lie outside the surface (sum x_k^2 / A_k > 1).
+// x outside the surface (sum x_k^2 / A_k > 1) or inside it.
 template <int N>
 SurfaceExtremum<N> nearest_surface_point(const Eigen::Matrix<double, N, 1> &squared_axes,
                                          const Eigen::Matrix<double, N, 1> &x);

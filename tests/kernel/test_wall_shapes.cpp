@@ -631,3 +631,198 @@ TEST(WallShapes, BoxInfiniteBoundIsAFarFace)
     EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9);
   }
 }
+
+// ---------------------------------------------------------------------------------------
+// A finite side met from inside (a cylinder's or cone's side between its ends) and the rims
+// where it ends. The rim's oracle: the depth of a rim point in the particle is its distance
+// from the surface (the oracle's search above, on -|p - q|), signed by the body frame's
+// inside test; the rim's deepest point from 60 angles, the best two refined by golden section.
+
+namespace {
+
+bool inside_raw(const RawEllipsoid &r, const V3L &q)
+{
+  const std::array<V3L, 3> rot = rotation_rows(r);
+  LD sum = 0;
+  for (int k = 0; k < 3; k++) {
+    LD body = 0;
+    for (int i = 0; i < 3; i++) body += rot[i][k] * (q[i] - r.c[i]);
+    sum += body * body / ((LD) r.axes[k] * r.axes[k]);
+  }
+  return sum < 1;
+}
+
+// the distance of q from the surface: a 24 x 48 grid of angles, then a pattern search from
+// the best three
+LD rim_point_depth(const RawEllipsoid &r, const V3L &q)
+{
+  const LD pi = 3.141592653589793238462643383279502884L;
+  auto distance = [&](LD t, LD p) {
+    const V3L y = surface_point(r, t, p);
+    return norm3(V3L{y[0] - q[0], y[1] - q[1], y[2] - q[2]});
+  };
+  struct Start { LD d, t, p; };
+  std::vector<Start> grid;
+  for (int i = 0; i <= 24; i++)
+    for (int j = 0; j < 48; j++) grid.push_back({distance(pi * i / 24, 2 * pi * j / 48), pi * i / 24, 2 * pi * j / 48});
+  std::partial_sort(grid.begin(), grid.begin() + 3, grid.end(),
+                    [](const Start &a, const Start &b) { return a.d < b.d; });
+  LD best = grid[0].d;
+  for (int s = 0; s < 3; s++) {
+    LD t = grid[s].t, p = grid[s].p, d = grid[s].d, step = pi / 24;
+    while (step > 1e-13L) {
+      bool moved = false;
+      for (const auto &dir : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1},
+                              {-1, -1}, {1, -1}, {-1, 1}}) {
+        const LD dn = distance(t + dir[0] * step, p + dir[1] * step);
+        if (dn < d) d = dn, t += dir[0] * step, p += dir[1] * step, moved = true;
+      }
+      if (!moved) step /= 2;
+    }
+    best = std::min(best, d);
+  }
+  return inside_raw(r, q) ? best : -best;
+}
+
+V3L rim_point(const Vec3 &k, const Vec3 &u, double rho, LD theta)
+{
+  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  V3L q;
+  for (int d = 0; d < 3; d++) q[d] = k[d] + rho * (std::cos(theta) * e1[d] + std::sin(theta) * e2[d]);
+  return q;
+}
+
+LD rim_oracle(const RawEllipsoid &r, const Vec3 &k, const Vec3 &u, double rho)
+{
+  const LD pi = 3.141592653589793238462643383279502884L;
+  constexpr int N = 60;
+  std::vector<std::pair<LD, int>> samples;
+  for (int j = 0; j < N; j++) samples.push_back({rim_point_depth(r, rim_point(k, u, rho, 2 * pi * j / N)), j});
+  std::partial_sort(samples.begin(), samples.begin() + 2, samples.end(),
+                    [](const auto &a, const auto &b) { return a.first > b.first; });
+  LD best = samples[0].first;
+  for (int s = 0; s < 2; s++) {
+    LD a = 2 * pi * (samples[s].second - 1) / N, b = 2 * pi * (samples[s].second + 1) / N;
+    const LD ratio = (std::sqrt(5.0L) - 1) / 2;
+    for (int it = 0; it < 36; it++) {
+      const LD x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
+      if (rim_point_depth(r, rim_point(k, u, rho, x1)) > rim_point_depth(r, rim_point(k, u, rho, x2)))
+        b = x2;
+      else
+        a = x1;
+    }
+    best = std::max(best, rim_point_depth(r, rim_point(k, u, rho, (a + b) / 2)));
+  }
+  return best;
+}
+
+}    // namespace
+
+TEST(WallShapes, RimAgainstBruteForce)
+{
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int overlapping = 0;
+  for (int k = 0; k < 8; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    r.c[0] = r.c[1] = r.c[2] = 0.0;
+    const Vec3 axis = random_unit(rng), centre(0.3, -0.2, 0.1);
+    const double rho = 1.5 + 2.0 * u(rng);
+    // a rim point within -0.05 to 0.3 of the smallest semi-axis of the particle's supporting
+    // plane along a random direction n normal to the rim there, inside it (the rim grazes the
+    // particle, shallower than its medial surface, where the depth along the rim has a kink)
+    const double theta = 2.0 * PI * u(rng);
+    const V3L q0 = rim_point(centre, axis, rho, theta);
+    const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+    const Vec3 tangent = -std::sin(theta) * e1 + std::cos(theta) * e2;
+    Vec3 n = random_unit(rng);
+    n = (n - n.dot(tangent) * tangent).normalized();
+    const double depth = (0.35 * u(rng) - 0.05) * std::min(r.axes[1], r.axes[2]);
+    const Vec3 offset = -(support(kernel_ellipsoid(r).inverse_form, n) - depth) * n;
+    for (int d = 0; d < 3; d++) r.c[d] = static_cast<double>(q0[d]) + offset[d];
+    const ContactGeometry g = ellipsoid_rim_contact(kernel_ellipsoid(r), centre, axis, rho, -2.0 * rho);
+    ASSERT_TRUE(g.status == Status::Overlapping || g.status == Status::Separated)
+        << static_cast<int>(g.status) << " case " << k;
+    // the reported point's depth is the oracle's, and no rim point is deeper
+    EXPECT_NEAR(g.overlap, static_cast<double>(rim_point_depth(r, to_ld(g.point_b))), 1e-10);
+    EXPECT_NEAR(g.overlap, static_cast<double>(rim_oracle(r, centre, axis, rho)), 1e-10);
+    EXPECT_NEAR(std::fabs(axis.dot(g.point_b - centre)), 0.0, 1e-12);
+    EXPECT_NEAR((g.point_a - g.overlap * g.normal - g.point_b).norm(), 0.0, 1e-12);
+    if (g.status == Status::Overlapping) overlapping++;
+  }
+  EXPECT_GE(overlapping, 4);
+}
+
+// a sphere meets a rim at the rim point nearest to its centre: LAMMPS's segment clamped to
+// the end (overlap r - |c - q|, R* from -2 rho)
+TEST(WallShapes, SphereAtRimClosedForm)
+{
+  const double r = 0.5, quat[4] = {1, 0, 0, 0};
+  WallSurface cone;
+  cone.shape = WallShape::Cone;
+  cone.center = Vec3(0.0, 0.0, 1.0);
+  cone.radius = 1.0;
+  cone.slope = 0.5;
+  cone.cap_lo = 0.0;    // the outlet: radius 1 at z = 1
+  // the first centre above the outlet (its foot on the side would lie below it), two below
+  for (const Vec3 &c : {Vec3(0.7, 0.1, 1.05), Vec3(0.75, -0.05, 0.9), Vec3(0.5, 0.5, 0.8)}) {
+    const Ellipsoid e = make_ellipsoid(c, quat, Vec3(r, r, r));
+    const ContactGeometry g = wall_contact(e, cone);
+    const Vec3 radial = Vec3(c[0], c[1], 0.0).normalized();
+    const Vec3 q = Vec3(0.0, 0.0, 1.0) + radial;
+    ASSERT_EQ(g.status, Status::Overlapping);
+    EXPECT_NEAR(g.overlap, r - (q - c).norm(), 1e-13);
+    EXPECT_NEAR((g.normal - (q - c).normalized()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((g.point_b - q).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(g.effective_radius, r * (-2.0) / (r - 2.0), 1e-13);
+  }
+}
+
+// the finite side's overlap and normal are continuous where its foot crosses the end (the side
+// gives way to the rim): a tilted ellipsoid slid along a hopper's axis past its outlet
+TEST(WallShapes, FiniteSideContinuousAcrossItsEnd)
+{
+  const double quat[4] = {0.9, 0.3, -0.2, 0.25};
+  WallSurface cone;
+  cone.shape = WallShape::Cone;
+  cone.radius = 1.2;
+  cone.slope = 0.6;
+  cone.cap_lo = 0.0;
+  int side = 0, rims = 0;
+  ContactGeometry last;
+  for (int k = 0; k <= 400; k++) {
+    const double s = 0.6 - 0.002 * k;
+    // the centre kept near the side as it slides
+    const Ellipsoid e = make_ellipsoid(Vec3(1.2 + 0.6 * s - 0.35, 0.05, s), quat, Vec3(0.5, 0.3, 0.2));
+    const ContactGeometry g = wall_contact(e, cone);
+    if (g.status != Status::Overlapping) break;    // the particle left the rim
+    (g.point_b[2] > 1e-12 ? side : rims)++;
+    if (k > 0) {
+      EXPECT_LT(std::fabs(g.overlap - last.overlap), 0.004) << s;
+      EXPECT_LT((g.normal - last.normal).norm(), 0.02) << s;
+    }
+    last = g;
+  }
+  EXPECT_GT(side, 20);
+  EXPECT_GT(rims, 20);
+}
+
+// a particle passing through an outlet wider than it meets nothing; the side continued past
+// the outlet (the infinite cone) would cut it
+TEST(WallShapes, OutletWiderThanTheParticleIsAHole)
+{
+  const double quat[4] = {1, 0.2, 0.1, 0};
+  const Ellipsoid e = make_ellipsoid(Vec3(0.02, 0.0, 0.1), quat, Vec3(0.75, 0.6, 0.5));
+  WallSurface cone;
+  cone.shape = WallShape::Cone;
+  cone.radius = 0.8;    // region cone z 0 0 0.8 3.0 0 4
+  cone.slope = 2.2 / 4.0;
+  EXPECT_EQ(wall_contact(e, cone).status, Status::Overlapping);    // the infinite cone
+  cone.cap_lo = 0.0;
+  cone.cap_hi = 4.0;
+  EXPECT_EQ(wall_contact(e, cone).status, Status::Separated);
+  // past the outlet: free of the rim
+  EXPECT_EQ(wall_contact(make_ellipsoid(Vec3(0.02, 0.0, -0.3), quat, Vec3(0.75, 0.6, 0.5)), cone)
+                .status,
+            Status::Separated);
+}
