@@ -28,9 +28,11 @@ struct IntervalMinimum {
   bool converged = false;
 };
 
+// The best `refined` discrete minima of the samples, each refined, in the samples' order of
+// value (best first before refinement)
 template <class F>
-IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool periodic, int samples,
-                                     int refined = 2)
+std::vector<IntervalMinimum> local_minima_on_interval(const F &f, double lo, double hi,
+                                                      bool periodic, int samples, int refined)
 {
   constexpr int GOLDEN_STEPS = 30;
   constexpr int NEWTON_STEPS = 20;
@@ -52,7 +54,7 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
   auto clamp = [&](double x) {
     return periodic ? x : std::min(hi, std::max(lo, x));
   };
-  IntervalMinimum best;
+  std::vector<IntervalMinimum> found;
   for (std::size_t k = 0; k < std::min<std::size_t>(refined, dips.size()); k++) {
     const double centre = lo + dips[k] * spacing;
     double a = clamp(centre - spacing), b = clamp(centre + spacing);
@@ -88,8 +90,18 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
     double value = f.value(x);
     // an iteration that did not settle and went uphill (a kink): the bracket's point
     if (!converged && value > f.value(bracketed)) x = bracketed, value = f.value(x);
-    if (value < best.value) best = {x, value, converged};
+    found.push_back({x, value, converged});
   }
+  return found;
+}
+
+template <class F>
+IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool periodic, int samples,
+                                     int refined = 2)
+{
+  IntervalMinimum best;
+  for (const IntervalMinimum &m : local_minima_on_interval(f, lo, hi, periodic, samples, refined))
+    if (m.value < best.value) best = m;
   return best;
 }
 

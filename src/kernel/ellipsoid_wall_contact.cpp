@@ -51,20 +51,30 @@ namespace {
                                  wall_radius);
   }
 
-  // a side met from inside, between its ends (ellipsoid_rim_contact.h): the infinite side's
-  // contact while its wall point lies between them, else the rim of the end it passed; a
-  // centre past an end and outside the infinite side meets that end's rim only
-  ContactGeometry finite_side(const Ellipsoid &e, const WallSurface &w)
+  // a side's contact whose wall point lies past an end: that end's rim's instead
+  ContactGeometry clamped(const Ellipsoid &e, const WallSurface &w, const ContactGeometry &g)
   {
-    const double passed = end_passed(w, e.center);
-    if (!std::isnan(passed) && side_clearance(w, e.center) <= 0.0) return rim(e, w, passed, true);
-    const ContactGeometry g = w.shape == WallShape::Cone
-        ? ellipsoid_cone_contact(e, w.center, w.axis, w.radius, w.slope)
-        : ellipsoid_cylinder_contact(e, w.center, w.axis, w.radius, true);
     if (g.status == Status::Separated || g.status == Status::Degenerate) return g;
     const double end = end_passed(w, g.point_b);
     if (std::isnan(end)) return g;
-    return rim(e, w, end, end == passed);
+    return rim(e, w, end, end == end_passed(w, e.center));
+  }
+
+  // a centre past an end and outside the infinite side meets that end's rim only
+  bool rim_only(const Ellipsoid &e, const WallSurface &w)
+  {
+    return !std::isnan(end_passed(w, e.center)) && side_clearance(w, e.center) <= 0.0;
+  }
+
+  // a side met from inside, between its ends (ellipsoid_rim_contact.h): the infinite side's
+  // contact while its wall point lies between them, else the rim of the end it passed
+  ContactGeometry finite_side(const Ellipsoid &e, const WallSurface &w)
+  {
+    if (rim_only(e, w)) return rim(e, w, end_passed(w, e.center), true);
+    return clamped(e, w,
+                   w.shape == WallShape::Cone
+                       ? ellipsoid_cone_contact(e, w.center, w.axis, w.radius, w.slope)
+                       : ellipsoid_cylinder_contact(e, w.center, w.axis, w.radius, true));
   }
 
 }    // namespace
@@ -117,6 +127,29 @@ ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w)
   ContactGeometry degenerate;
   degenerate.status = Status::Degenerate;
   return degenerate;
+}
+
+bool several_contacts(const WallSurface &w)
+{
+  return w.shape == WallShape::Cone || (w.shape == WallShape::Cylinder && w.inside);
+}
+
+FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
+{
+  FaceContacts found;
+  ContactGeometry side[2];
+  if (!several_contacts(w) || rim_only(e, w) ||
+      concave_side_contacts(e, w.center, w.axis, w.radius,
+                            w.shape == WallShape::Cone ? w.slope : 0.0, side) < 2) {
+    found.count = 1;
+    found.contact[0] = wall_contact(e, w);
+    return found;
+  }
+  // both past the same end: that rim is one contact
+  const double end0 = end_passed(w, side[0].point_b), end1 = end_passed(w, side[1].point_b);
+  const bool one_rim = side[0].overlap > 0.0 && side[1].overlap > 0.0 && end0 == end1;
+  for (int k = 0; k < (one_rim ? 1 : 2); k++) found.contact[found.count++] = clamped(e, w, side[k]);
+  return found;
 }
 
 }    // namespace EllipsoidDep

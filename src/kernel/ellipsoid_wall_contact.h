@@ -57,7 +57,19 @@ struct WallSurface {
 };
 
 double wall_clearance(const WallSurface &w, const Vec3 &x);
+// the deepest contact
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
+
+// Every separate contact region of the face: a concave side (a cylinder's from inside, a
+// cone's) may have two (ellipsoid_cone_contact.h, concave_side_contacts); a side's contact
+// past an end becomes that end's rim's (one per end). Other faces: wall_contact's one.
+constexpr int MAX_FACE_CONTACTS = 2;
+struct FaceContacts {
+  int count = 0;
+  ContactGeometry contact[MAX_FACE_CONTACTS];
+};
+bool several_contacts(const WallSurface &w);
+FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w);
 
 }    // namespace EllipsoidDep
 

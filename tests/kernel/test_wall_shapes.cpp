@@ -826,3 +826,77 @@ TEST(WallShapes, OutletWiderThanTheParticleIsAHole)
                 .status,
             Status::Separated);
 }
+
+// ---------------------------------------------------------------------------------------
+// Several contact regions of one concave face
+
+namespace {
+
+Ellipsoid rod(const Vec3 &centre, const Mat3 &rotation, const Vec3 &semi_axes)
+{
+  return make_ellipsoid(centre, rotation, semi_axes);
+}
+
+Mat3 turn(const Vec3 &axis, double angle)
+{
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+}    // namespace
+
+// a rod (shape 6 1 1) tilted across a pipe narrower than it, centred on its axis: both ends
+// touch, as deep as each other, pushed in opposite directions (net force 0, as two planes at
+// the same places give); the deepest contact alone was one of them
+TEST(WallShapes, SymmetricRodInAPipeTouchesBothSides)
+{
+  WallSurface pipe;
+  pipe.shape = WallShape::Cylinder;
+  pipe.axis = Vec3::UnitZ();
+  pipe.radius = 2.5;
+  for (const WallShape shape : {WallShape::Cylinder, WallShape::Cone}) {
+    pipe.shape = shape;    // a cone of slope 0 is the cylinder
+    const Ellipsoid e = rod(Vec3::Zero(), turn(Vec3(0.3, 1.0, 0.0), 0.5), Vec3(3.0, 0.5, 0.5));
+    const FaceContacts found = wall_contacts(e, pipe);
+    ASSERT_EQ(found.count, 2);
+    const ContactGeometry &a = found.contact[0], &b = found.contact[1];
+    EXPECT_EQ(a.status, Status::Overlapping);
+    EXPECT_EQ(b.status, Status::Overlapping);
+    EXPECT_NEAR(a.overlap, b.overlap, 1e-12);
+    EXPECT_NEAR((a.normal + b.normal).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((a.point_a + b.point_a).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(a.overlap, wall_contact(e, pipe).overlap, 1e-12);
+  }
+}
+
+// a flat rod lying along the wall of a pipe, its ends beyond it, turned about its long axis:
+// its middle leaves the wall (the neck between the two contact regions crosses zero: one
+// region splits into two) and the overlaps and normals change continuously through it
+TEST(WallShapes, ContactsContinuousWhereARegionSplits)
+{
+  WallSurface pipe;
+  pipe.shape = WallShape::Cylinder;
+  pipe.axis = Vec3::UnitZ();
+  pipe.radius = 2.0;
+  const Vec3 semi(1.2, 0.3, 0.12), long_axis = turn(Vec3::UnitZ(), 0.03) * Vec3::UnitY();
+  FaceContacts last;
+  double neck_first = 0.0, neck_last = 0.0;
+  for (int k = 0; k <= 800; k++) {
+    const double angle = 0.5 * PI * k / 800;
+    // the rod's long axis along y (tilted a little), its width along x turning towards z
+    const Mat3 r = turn(long_axis, angle) * turn(Vec3::UnitZ(), 0.03) * turn(Vec3::UnitZ(), 0.5 * PI);
+    const Ellipsoid e = rod(Vec3(1.75, 0.0, 0.0), r, semi);
+    const FaceContacts found = wall_contacts(e, pipe);
+    ASSERT_EQ(found.count, 2) << angle;
+    // the middle's reach beyond the wall: the neck
+    const double middle = 1.75 + support(e.inverse_form, Vec3::UnitX()) - pipe.radius;
+    (k == 0 ? neck_first : neck_last) = middle;
+    if (k > 0)
+      for (int c = 0; c < 2; c++) {
+        EXPECT_LT(std::fabs(found.contact[c].overlap - last.contact[c].overlap), 1e-3) << angle;
+        EXPECT_LT((found.contact[c].normal - last.contact[c].normal).norm(), 1e-3) << angle;
+      }
+    last = found;
+  }
+  EXPECT_GT(neck_first, 0.02);    // one region at first
+  EXPECT_LT(neck_last, -0.05);    // two at the end
+}
