@@ -125,3 +125,37 @@ def test_each_contact_region_keeps_its_own_friction_history():
     assert np.abs(runs["planes"][0, 9:12]).max() > 0.0    # the walls push
     assert runs["planes"][-1, 5] < 0.49    # friction slows the slide
     np.testing.assert_allclose(runs["pipe"], runs["planes"], rtol=0, atol=1e-9 * scale.max())
+
+
+def test_contact_regions_history_survives_restart(tmp_path):
+    """The wedged rod sliding with friction, written to a restart file while both ends touch:
+    read back (the region and fix given again), each end's slot (its normal and tangential
+    spring) continues as if the run had not stopped."""
+    law = "hertz 1e4 0 tangential history 1e3 0.5"
+    restart = tmp_path / "rod.restart"
+
+    def state(lmp):
+        return np.concatenate([np.array(lmp.numpy.extract_atom(k)[0], dtype=float)
+                               for k in ("x", "v", "angmom")])
+
+    lmp = rod_scene(pipe(2.58).replace(LAW, law) + " contacts", 60.0, velocity=(0.0, 0.0, 0.5))
+    lmp.command("run 40 post no")
+    assert lmp.numpy.extract_fix("w", 1, 2)[0][0] == 2.0    # both ends touch
+    lmp.command(f"write_restart {restart}")
+    lmp.command("run 60 post no")
+    ref = state(lmp)
+    lmp.close()
+
+    lmp = new_lammps()
+    lmp.commands_string(f"""
+        read_restart {restart}
+        comm_modify vel yes
+        pair_coeff * * {LAW}
+        {pipe(2.58).replace(LAW, law)}
+        fix i all nve/asphere
+        timestep 2e-4
+        run 60 post no
+        """)
+    cont = state(lmp)
+    lmp.close()
+    np.testing.assert_allclose(cont, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
