@@ -107,7 +107,7 @@ ContactGeometry ellipsoid_cone_contact(const Ellipsoid &e, const Vec3 &center, c
 }
 
 int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &axis, double radius,
-                          double slope, ContactGeometry contacts[2])
+                          double slope, ContactGeometry contacts[2], double &neck)
 {
   if (!usable(e, center, axis, radius, slope)) return 0;
   const ConeObjective f = objective(e, center, axis, slope);
@@ -121,29 +121,13 @@ int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &ax
   // the neck: the higher of the profile's lowest points on the two arcs between the peaks
   const double a = peaks[0].x, b = a + (apart > 0.0 ? apart : apart + 2.0 * PI);
   const double length = std::sqrt(1.0 + slope * slope);    // |w(phi)|
-  double neck = -HUGE_VAL;
+  neck = -HUGE_VAL;
   for (const auto &arc : {std::array<double, 2>{a, b}, std::array<double, 2>{b, a + 2.0 * PI}}) {
     const IntervalMinimum low = minimise_on_interval(f, arc[0], arc[1], false, SAMPLES / 2, 1);
     neck = std::max(neck, (low.value - radius) / length);
   }
   for (int k = 0; k < 2; k++) contacts[k] = contact_at(e, f, center, radius, peaks[k]);
-  share_neck(contacts[0], contacts[1], neck);
   return 2;
-}
-
-void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck)
-{
-  if (!(neck > 0.0)) return;
-  const double excess_deeper = deeper.overlap - neck, excess_other = other.overlap - neck;
-  const double share = excess_deeper > 0.0 ? std::min(1.0, excess_other / excess_deeper) : 1.0;
-  auto lower = [](ContactGeometry &g, double by) {
-    g.overlap -= by;
-    g.point_b = g.point_a - g.overlap * g.normal;
-    g.point = 0.5 * (g.point_a + g.point_b);
-    if (g.status != Status::NotConverged) g.status = surface_status(true, g.overlap);
-  };
-  lower(deeper, neck * share);
-  lower(other, neck);
 }
 
 }    // namespace EllipsoidDep

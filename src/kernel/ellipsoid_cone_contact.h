@@ -38,19 +38,12 @@ ContactGeometry ellipsoid_cone_contact(const Ellipsoid &e, const Vec3 &center, c
 // A particle may reach beyond a concave side in separate places (a rod across a pipe touches
 // both sides): the profile f(phi) above has a second maximum. With two maxima (the two best
 // discrete maxima of the 64 samples, refined, apart by more than a sample) this gives both
-// contacts, the deeper first, their overlaps shared at the neck (share_neck) and returns 2;
-// otherwise 0 (one contact region: ellipsoid_cone_contact's). The neck is the higher of the
-// profile's lowest values on the two arcs between the maxima (each a closed-interval search,
-// 32 samples), as a depth. A cylinder's side is the cone of slope 0.
+// contacts, the deeper first, and the neck between them (the higher of the profile's lowest
+// values on the two arcs between the maxima, each a closed-interval search of 32 samples, as
+// a depth) and returns 2; otherwise 0 (one maximum: ellipsoid_cone_contact's). A cylinder's
+// side is the cone of slope 0.
 int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &axis, double radius,
-                          double slope, ContactGeometry contacts[2]);
-
-// Two contacts of one face whose regions join above the neck (neck > 0: the particle lies
-// beyond the face all the way between them) share it: the shallower loses the neck's depth,
-// the deeper the neck's depth times the ratio of their excesses over it. Apart (neck <= 0)
-// both keep their depths. So a contact region that splits in two, a second maximum that
-// appears or vanishes, or two maxima that swap order change the overlaps continuously.
-void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck);
+                          double slope, ContactGeometry contacts[2], double &neck);
 
 }    // namespace EllipsoidDep
 

@@ -4,6 +4,7 @@
 
 #include "ellipsoid_point_extremum.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -135,6 +136,119 @@ SurfaceExtremum<N> nearest_surface_point(const Eigen::Matrix<double, N, 1> &a2,
   const double t = secular_root<N>(a2, x, -amin2, 0.0, false, converged);
   return point_at<N>(a2, x, t, converged);
 }
+
+namespace {
+
+  // F(t) = sum A_k x_k^2 / (A_k + t)^2 and F'(t)
+  template <int N>
+  double secular(const Eigen::Matrix<double, N, 1> &a2, const Eigen::Matrix<double, N, 1> &x,
+                 double t, double &slope)
+  {
+    double big_f = 0.0;
+    slope = 0.0;
+    for (int k = 0; k < N; k++) {
+      if (x[k] == 0.0) continue;
+      const double q = 1.0 / (a2[k] + t), term = a2[k] * x[k] * x[k] * q * q;
+      big_f += term;
+      slope -= 2.0 * term * q;
+    }
+    return big_f;
+  }
+
+  // whether the stationary point y (multiplier t) is a local maximum of |y - x| on the
+  // surface: the Lagrangian's Hessian diag(1 + t / A_k) negative on the tangent plane
+  template <int N>
+  bool local_maximum(const Eigen::Matrix<double, N, 1> &a2, const Eigen::Matrix<double, N, 1> &y,
+                     double t)
+  {
+    const Eigen::Matrix<double, N, 1> g = y.cwiseQuotient(a2).normalized();
+    const Eigen::Matrix<double, N, N> h =
+        (Eigen::Matrix<double, N, 1>::Ones() + t * a2.cwiseInverse()).asDiagonal();
+    const Eigen::Matrix<double, N, N> projector =
+        Eigen::Matrix<double, N, N>::Identity() - g * g.transpose();
+    // on the tangent plane: the projected Hessian, the normal's eigenvalue lifted above all
+    const double lift = 1.0 + h.cwiseAbs().maxCoeff();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(
+        projector * h * projector + lift * g * g.transpose());
+    int negative = 0;
+    for (int k = 0; k < N; k++) negative += eigen.eigenvalues()[k] < 0.0;
+    return negative == N - 1;
+  }
+
+}    // namespace
+
+template <int N>
+std::vector<StationaryPoint<N>> stationary_surface_points(const Eigen::Matrix<double, N, 1> &a2,
+                                                          const Eigen::Matrix<double, N, 1> &x)
+{
+  using VecN = Eigen::Matrix<double, N, 1>;
+  std::vector<StationaryPoint<N>> found;
+  auto add = [&](const VecN &y, double t, bool converged) {
+    found.push_back({y, (y - x).norm(), local_maximum<N>(a2, y, t), converged});
+  };
+  // the poles -A_k of the terms present, ascending and distinct
+  std::vector<double> poles;
+  double sum = 0.0;
+  for (int k = 0; k < N; k++)
+    if (x[k] != 0.0) poles.push_back(-a2[k]), sum += a2[k] * x[k] * x[k];
+  std::sort(poles.begin(), poles.end());
+  poles.erase(std::unique(poles.begin(), poles.end()), poles.end());
+  auto root = [&](double lo, double hi, bool rising) {
+    bool converged = false;
+    const double t = secular_root<N>(a2, x, lo, hi, rising, converged);
+    const SurfaceExtremum<N> r = point_at<N>(a2, x, t, converged);
+    add(r.point, t, converged);
+  };
+  if (!poles.empty()) {
+    const double reach = std::sqrt(sum);    // F <= 1 that far beyond the outer poles
+    root(poles.front() - reach, poles.front(), true);
+    root(poles.back(), poles.back() + reach, false);
+    // between two poles F is convex: at its lowest point below 1, a root either side
+    for (std::size_t j = 0; j + 1 < poles.size(); j++) {
+      double lo = poles[j], hi = poles[j + 1], slope = 0.0;
+      for (int it = 0; it < 200 && hi - lo > 4.0 * std::numeric_limits<double>::epsilon() *
+                                                 std::fabs(lo); it++) {
+        const double mid = 0.5 * (lo + hi);
+        secular<N>(a2, x, mid, slope);
+        (slope < 0.0 ? lo : hi) = mid;
+      }
+      const double lowest = 0.5 * (lo + hi);
+      if (!(secular<N>(a2, x, lowest, slope) < 1.0)) continue;
+      root(poles[j], lowest, false);
+      root(lowest, poles[j + 1], true);
+    }
+  }
+  // the hard cases: t = -A for a squared semi-axis A along which x has no component (its
+  // pole absent), the free components on the circle or pair of points that closes the surface
+  for (int k = 0; k < N; k++) {
+    bool first = true, absent = true;
+    for (int j = 0; j < N; j++)
+      if (a2[j] == a2[k]) {
+        first = first && j >= k;
+        absent = absent && x[j] == 0.0;
+      }
+    if (!first || !absent) continue;
+    VecN y = VecN::Zero();
+    double rest = 1.0;
+    for (int j = 0; j < N; j++)
+      if (a2[j] != a2[k]) {
+        y[j] = a2[j] * x[j] / (a2[j] - a2[k]);
+        rest -= y[j] * y[j] / a2[j];
+      }
+    if (!(rest > 0.0)) continue;
+    // one point of each: both signs along the first such axis (a circle: its value is one)
+    y[k] = std::sqrt(a2[k] * rest);
+    add(y, -a2[k], true);
+    y[k] = -y[k];
+    add(y, -a2[k], true);
+  }
+  return found;
+}
+
+template std::vector<StationaryPoint<2>> stationary_surface_points<2>(const Eigen::Vector2d &,
+                                                                      const Eigen::Vector2d &);
+template std::vector<StationaryPoint<3>> stationary_surface_points<3>(const Eigen::Vector3d &,
+                                                                      const Eigen::Vector3d &);
 
 template SurfaceExtremum<2> farthest_surface_point<2>(const Eigen::Vector2d &,
                                                       const Eigen::Vector2d &);

@@ -21,6 +21,8 @@
 
 #include <Eigen/Dense>
 
+#include <vector>
+
 namespace EllipsoidDep {
 
 template <int N> struct SurfaceExtremum {
@@ -28,6 +30,24 @@ template <int N> struct SurfaceExtremum {
   double distance = 0.0;                // |y - x|
   bool converged = true;
 };
+
+// A stationary point of |y - x| on the surface: its point, distance, whether it is a local
+// maximum (on the tangent plane the Lagrangian's Hessian diag(1 + t/A_k) is negative).
+template <int N> struct StationaryPoint {
+  Eigen::Matrix<double, N, 1> point;
+  double distance = 0.0;
+  bool maximum = false;
+  bool converged = true;
+};
+
+// Every stationary point: F's roots on each interval between its poles (outside the outer
+// poles one each; between two poles F is convex: none or two, around its lowest point, found
+// by bisection on F'), and the hard cases' points (x without a component along the axes of a
+// squared semi-axis A: t = -A, the free components closing the surface; a circle of them is
+// given by two of its points).
+template <int N>
+std::vector<StationaryPoint<N>> stationary_surface_points(
+    const Eigen::Matrix<double, N, 1> &squared_axes, const Eigen::Matrix<double, N, 1> &x);
 
 // squared_axes: A_k > 0; x: the point in the principal frame.
 template <int N>

@@ -131,18 +131,30 @@ ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w)
 
 bool several_contacts(const WallSurface &w)
 {
-  return w.shape == WallShape::Cone || (w.shape == WallShape::Cylinder && w.inside);
+  return w.inside && w.shape != WallShape::Plane && w.shape != WallShape::Box;
 }
 
 FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
 {
   FaceContacts found;
   ContactGeometry side[2];
-  if (!several_contacts(w) || rim_only(e, w) ||
-      concave_side_contacts(e, w.center, w.axis, w.radius,
-                            w.shape == WallShape::Cone ? w.slope : 0.0, side) < 2) {
+  double neck = -HUGE_VAL;
+  const bool two = several_contacts(w) &&
+      (w.shape == WallShape::Sphere
+           ? sphere_inside_contacts(e, w.center, w.radius, side, neck) == 2
+           : !rim_only(e, w) &&
+               concave_side_contacts(e, w.center, w.axis, w.radius,
+                                     w.shape == WallShape::Cone ? w.slope : 0.0, side,
+                                     neck) == 2);
+  if (!two) {
     found.count = 1;
     found.contact[0] = wall_contact(e, w);
+    return found;
+  }
+  share_neck(side[0], side[1], neck);
+  if (w.shape == WallShape::Sphere) {
+    found.count = 2;
+    found.contact[0] = side[0], found.contact[1] = side[1];
     return found;
   }
   // both past the same end: that rim is one contact
@@ -150,6 +162,21 @@ FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
   const bool one_rim = side[0].overlap > 0.0 && side[1].overlap > 0.0 && end0 == end1;
   for (int k = 0; k < (one_rim ? 1 : 2); k++) found.contact[found.count++] = clamped(e, w, side[k]);
   return found;
+}
+
+void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck)
+{
+  if (!(neck > 0.0)) return;
+  const double excess_deeper = deeper.overlap - neck, excess_other = other.overlap - neck;
+  const double share = excess_deeper > 0.0 ? std::min(1.0, excess_other / excess_deeper) : 1.0;
+  auto lower = [](ContactGeometry &g, double by) {
+    g.overlap -= by;
+    g.point_b = g.point_a - g.overlap * g.normal;
+    g.point = 0.5 * (g.point_a + g.point_b);
+    if (g.status != Status::NotConverged) g.status = surface_status(true, g.overlap);
+  };
+  lower(deeper, neck * share);
+  lower(other, neck);
 }
 
 }    // namespace EllipsoidDep

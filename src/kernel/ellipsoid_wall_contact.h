@@ -61,8 +61,9 @@ double wall_clearance(const WallSurface &w, const Vec3 &x);
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
 
 // Every separate contact region of the face: a concave side (a cylinder's from inside, a
-// cone's) may have two (ellipsoid_cone_contact.h, concave_side_contacts); a side's contact
-// past an end becomes that end's rim's (one per end). Other faces: wall_contact's one.
+// cone's; ellipsoid_cone_contact.h, concave_side_contacts) and a sphere from inside
+// (ellipsoid_sphere_contact.h, sphere_inside_contacts) may have two; a side's contact past
+// an end becomes that end's rim's (one per end). Other faces: wall_contact's one.
 constexpr int MAX_FACE_CONTACTS = 2;
 struct FaceContacts {
   int count = 0;
@@ -70,6 +71,13 @@ struct FaceContacts {
 };
 bool several_contacts(const WallSurface &w);
 FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w);
+
+// Two contacts of one face whose regions join above the neck (neck > 0: the particle lies
+// beyond the face all the way between them) share it: the shallower loses the neck's depth,
+// the deeper the neck's depth times the ratio of their excesses over it. Apart (neck <= 0)
+// both keep their depths. So a contact region that splits in two, a second maximum that
+// appears or vanishes, or two maxima that swap order change the overlaps continuously.
+void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck);
 
 }    // namespace EllipsoidDep
 

@@ -900,3 +900,105 @@ TEST(WallShapes, ContactsContinuousWhereARegionSplits)
   EXPECT_GT(neck_first, 0.02);    // one region at first
   EXPECT_LT(neck_last, -0.05);    // two at the end
 }
+
+// the same rod centred in a bowl narrower than it, every way round: both ends, as deep
+TEST(WallShapes, SymmetricRodInABowlTouchesBothSides)
+{
+  WallSurface bowl;
+  bowl.shape = WallShape::Sphere;
+  bowl.center = Vec3(0.2, -0.1, 0.3);
+  bowl.radius = 2.9;
+  for (const double angle : {0.0, 0.4, 1.3, 2.9}) {
+    const Ellipsoid e = rod(bowl.center, turn(Vec3(0.3, 1.0, -0.5), angle), Vec3(3.0, 0.5, 0.4));
+    const FaceContacts found = wall_contacts(e, bowl);
+    ASSERT_EQ(found.count, 2) << angle;
+    const ContactGeometry &a = found.contact[0], &b = found.contact[1];
+    EXPECT_EQ(a.status, Status::Overlapping);
+    EXPECT_NEAR(a.overlap, 0.1, 1e-12);
+    EXPECT_NEAR(b.overlap, 0.1, 1e-12);
+    EXPECT_NEAR((a.normal + b.normal).norm(), 0.0, 1e-12);
+  }
+}
+
+// the local maxima of the distance from a point over an ellipsoid's surface and the neck
+// between two of them against a grid of 100 x 200 angles: its local maxima refined by pattern
+// search (to 1e-10), and the neck by flooding the grid from the top (the value at which the
+// two maxima's regions join: to the grid's spacing)
+TEST(WallShapes, TwoMaximaAndTheirNeckAgainstBruteForce)
+{
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const LD pi = 3.141592653589793238462643383279502884L;
+  constexpr int NT = 100, NP = 200;
+  int pairs = 0;
+  for (int k = 0; k < 16; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    r.axes[1] = 0.1 + 0.5 * u(rng), r.axes[2] = 0.1 + 0.5 * u(rng);    // elongated
+    for (double &c : r.c) c = 0.0;
+    const Vec3 s = 0.35 * u(rng) * random_unit(rng);    // the bowl's centre
+    auto dist = [&](int i, int j) {
+      const V3L p = surface_point(r, pi * (i + 0.5) / NT, 2 * pi * j / NP);
+      return norm3(V3L{p[0] - s[0], p[1] - s[1], p[2] - s[2]});
+    };
+    std::vector<LD> d(NT * NP);
+    for (int i = 0; i < NT; i++)
+      for (int j = 0; j < NP; j++) d[i * NP + j] = dist(i, j);
+    auto neighbours = [&](int n) {
+      const int i = n / NP, j = n % NP;
+      std::vector<int> out;
+      for (int di = -1; di <= 1; di++)
+        for (int dj = -1; dj <= 1; dj++) {
+          if (di == 0 && dj == 0) continue;
+          const int ii = i + di;
+          if (ii < 0 || ii >= NT) continue;
+          out.push_back(ii * NP + (j + dj + NP) % NP);
+        }
+      return out;
+    };
+    // flooding: join cells from the highest down; two regions with a grid maximum each meet
+    std::vector<int> order(NT * NP), parent(NT * NP, -1);
+    for (int n = 0; n < NT * NP; n++) order[n] = n;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return d[a] > d[b]; });
+    std::function<int(int)> find = [&](int n) { return parent[n] == n ? n : parent[n] = find(parent[n]); };
+    // a region whose top rises less than 1e-4 above where it joins a higher one is the
+    // grid's, not a maximum
+    std::vector<LD> top(NT * NP, 0);
+    int regions = 1;
+    LD neck = -1;
+    for (int n : order) {
+      parent[n] = n;
+      top[n] = d[n];
+      std::vector<int> roots;
+      for (int m : neighbours(n))
+        if (parent[m] >= 0) roots.push_back(find(m));
+      std::sort(roots.begin(), roots.end());
+      roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+      if (roots.empty()) continue;
+      std::sort(roots.begin(), roots.end(), [&](int a, int b) { return top[a] > top[b]; });
+      for (std::size_t q = 1; q < roots.size(); q++)
+        if (top[roots[q]] - d[n] > 1e-4L && neck < 0) regions++, neck = d[n];
+      for (int root : roots) parent[root] = n;
+      top[n] = top[roots[0]];
+    }
+    // the kernel's maxima and neck (as a distance: radius 0)
+    ContactGeometry two[2];
+    double kernel_neck = 0.0;
+    const int count = sphere_inside_contacts(kernel_ellipsoid(r), s, 1e-300, two, kernel_neck);
+    ASSERT_EQ(count == 2, regions >= 2) << "case " << k;
+    if (count < 2) continue;
+    pairs++;
+    // each kernel maximum is a local maximum of the distance: no surface point nearby farther
+    for (const ContactGeometry &g : two) {
+      const LD depth = g.overlap;
+      const OracleResult o = deepest(r, [&](const V3L &p) {
+        const LD dx = p[0] - g.point_a[0], dy = p[1] - g.point_a[1], dz = p[2] - g.point_a[2];
+        if (dx * dx + dy * dy + dz * dz > 0.04L) return (LD) -1e300;
+        return norm3(V3L{p[0] - s[0], p[1] - s[1], p[2] - s[2]});
+      });
+      EXPECT_NEAR(static_cast<double>(o.depth), static_cast<double>(depth), 1e-10) << "case " << k;
+    }
+    EXPECT_GT((two[0].point_a - two[1].point_a).norm(), 0.2);
+    EXPECT_NEAR(kernel_neck, static_cast<double>(neck), 2e-3) << "case " << k;
+  }
+  EXPECT_GE(pairs, 6);
+}

@@ -3,7 +3,7 @@ contacts. A rod (shape 6 1 1) across a pipe narrower than its length touches bot
 net force vanishes for the symmetric rod as between two plane walls at the same places (one
 contact, the deeper, gave -28.35 and half the torque), and an elastic rod bouncing in a pipe
 keeps its energy as between planes (with one contact it drifted by about 1 %, not converging
-with dt)."""
+with dt); the same in a sphere region (a bowl)."""
 import math
 
 import numpy as np
@@ -50,6 +50,11 @@ def pipe(radius):
             f"fix w all wall/gran/region/ellipsoid {LAW} region r")
 
 
+def bowl(radius):
+    return (f"region r sphere 0 0 0 {radius}\n"
+            f"fix w all wall/gran/region/ellipsoid {LAW} region r")
+
+
 def planes(radius):
     return f"fix w all wall/gran/ellipsoid {LAW} xplane {-radius} {radius}"
 
@@ -76,15 +81,25 @@ def test_symmetric_rod_across_a_pipe_feels_no_net_force():
     np.testing.assert_allclose(t_pipe, t_planes, rtol=1e-10, atol=1e-10 * scale)
 
 
-def bounce_energy(wall, steps):
-    """The rod (tilted 55 degrees from the pipe's axis: it reaches 2.47 either side) turning
-    about y, a little off the axis and drifting sideways, in a pipe or between planes 2.6 from
-    the axis: past 59 degrees both its ends reach the sides, it bounces back, turns through
-    the axis and meets the other sides. Returns the kinetic energy (translation and rotation)
-    whenever no wall touches it, relative to the first, and the largest number of contacts
-    seen at once (every 100 steps)."""
-    lmp = rod_scene(wall + " contacts", 55.0, velocity=(0.01, 0.004, 0.0), spin=(0.0, 5.8, 0.0))
-    lmp.command("displace_atoms all move 0.004 -0.002 0")
+def test_symmetric_rod_in_a_bowl_feels_no_net_force():
+    """The rod centred in a sphere region narrower than it: both tips, no net force (the
+    deeper tip alone: 112)."""
+    f, t = forces(rod_scene(bowl(2.95), 60.0))
+    np.testing.assert_allclose(f, 0.0, atol=1e-7)
+    np.testing.assert_allclose(t, 0.0, atol=1e-7)
+    lmp = rod_scene(bowl(2.95) + " contacts", 60.0)
+    lmp.command("run 0 post no")
+    assert lmp.numpy.extract_fix("w", 1, 2)[0][0] == 2.0
+    lmp.close()
+
+
+def bounce_energy(wall, steps, tilt, velocity, spin, offset):
+    """The rod started at `offset` from the axis with `velocity` and angular momentum `spin`;
+    returns the kinetic energy (translation and rotation) whenever no wall touches it,
+    relative to the first, and the largest number of contacts seen at once (every 100
+    steps)."""
+    lmp = rod_scene(wall + " contacts", tilt, velocity=velocity, spin=spin)
+    lmp.command("displace_atoms all move {} {} {}".format(*offset))
     energies, most = [], 0
     for _ in range(steps // 100):
         lmp.command("run 100 post no")
@@ -96,12 +111,25 @@ def bounce_energy(wall, steps):
     return np.array(energies) / energies[0] - 1.0, most
 
 
-@pytest.mark.parametrize("wall", ["pipe", "planes"])
-def test_bouncing_rod_keeps_its_energy(wall):
-    drift, most = bounce_energy(pipe(2.6) if wall == "pipe" else planes(2.6), 40000)
+# the rod tilted 55 degrees from the pipe's axis (it reaches 2.47 either side) turning about y,
+# a little off the axis and drifting sideways, in a pipe or between planes 2.6 from the axis:
+# past 59 degrees both its ends reach the sides, it bounces back, turns through the axis and
+# meets the other sides; in a bowl of radius 3.03 (the rod 3 long either side), moving across
+# its length: both tips reach the bowl at once
+TURNING = dict(tilt=55.0, velocity=(0.01, 0.004, 0.0), spin=(0.0, 5.8, 0.0),
+               offset=(0.004, -0.002, 0.0))
+ACROSS = dict(tilt=58.0, velocity=(0.01, 0.4, 0.0), spin=(0.0, 0.0, 0.0),
+              offset=(0.002, 0.0, 0.001))
+
+
+@pytest.mark.parametrize("wall,motion", [(pipe(2.6), TURNING), (planes(2.6), TURNING),
+                                         (bowl(3.03), ACROSS)], ids=["pipe", "planes", "bowl"])
+def test_bouncing_rod_keeps_its_energy(wall, motion):
+    """pipe 2.7e-7, planes 2.5e-7, bowl 6e-9; the deeper contact alone: 9e-4 in the pipe,
+    3.6e-3 in the bowl"""
+    drift, most = bounce_energy(wall, 40000, **motion)
     assert most == 2    # both ends at once
     assert len(drift) >= 100
-    # pipe 2.7e-7, planes 2.5e-7; the deeper contact alone: 9e-4
     assert np.abs(drift).max() < 1e-5, np.abs(drift).max()
 
 
