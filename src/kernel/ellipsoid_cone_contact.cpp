@@ -113,11 +113,13 @@ int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &ax
   const ConeObjective f = objective(e, center, axis, slope);
   std::vector<IntervalMinimum> peaks =
       local_minima_on_interval(NegatedCone{f}, 0.0, 2.0 * PI, true, SAMPLES, 2);
-  if (peaks.size() < 2) return 0;
+  // the deeper first (the first of equals, as minimise_on_interval)
+  if (peaks.size() == 2 && peaks[1].value < peaks[0].value) std::swap(peaks[0], peaks[1]);
+  contacts[0] = contact_at(e, f, center, radius, peaks[0]);
+  if (peaks.size() < 2) return 1;
   // the same peak reached from two samples
   const double apart = std::remainder(peaks[1].x - peaks[0].x, 2.0 * PI);
-  if (std::fabs(apart) < 2.0 * PI / SAMPLES) return 0;
-  if (peaks[1].value < peaks[0].value) std::swap(peaks[0], peaks[1]);
+  if (std::fabs(apart) < 2.0 * PI / SAMPLES) return 1;
   // the neck: the higher of the profile's lowest points on the two arcs between the peaks
   const double a = peaks[0].x, b = a + (apart > 0.0 ? apart : apart + 2.0 * PI);
   const double length = std::sqrt(1.0 + slope * slope);    // |w(phi)|
@@ -126,7 +128,7 @@ int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &ax
     const IntervalMinimum low = minimise_on_interval(f, arc[0], arc[1], false, SAMPLES / 2, 1);
     neck = std::max(neck, (low.value - radius) / length);
   }
-  for (int k = 0; k < 2; k++) contacts[k] = contact_at(e, f, center, radius, peaks[k]);
+  contacts[1] = contact_at(e, f, center, radius, peaks[1]);
   return 2;
 }
 

@@ -139,15 +139,20 @@ FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
   FaceContacts found;
   ContactGeometry side[2];
   double neck = -HUGE_VAL;
-  const bool two = several_contacts(w) &&
-      (w.shape == WallShape::Sphere
-           ? sphere_inside_contacts(e, w.center, w.radius, side, neck) == 2
-           : !rim_only(e, w) &&
-               concave_side_contacts(e, w.center, w.axis, w.radius,
-                                     w.shape == WallShape::Cone ? w.slope : 0.0, side,
-                                     neck) == 2);
-  if (!two) {
-    found.count = 1;
+  int count = 0;
+  if (several_contacts(w))
+    count = w.shape == WallShape::Sphere
+        ? sphere_inside_contacts(e, w.center, w.radius, side, neck)
+        : rim_only(e, w) ? 0
+                         : concave_side_contacts(e, w.center, w.axis, w.radius,
+                                                 w.shape == WallShape::Cone ? w.slope : 0.0,
+                                                 side, neck);
+  found.count = 1;
+  if (count == 1 && w.shape == WallShape::Cone) {    // the cone's one contact, found already
+    found.contact[0] = clamped(e, w, side[0]);
+    return found;
+  }
+  if (count < 2) {
     found.contact[0] = wall_contact(e, w);
     return found;
   }
@@ -160,7 +165,8 @@ FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
   // both past the same end: that rim is one contact
   const double end0 = end_passed(w, side[0].point_b), end1 = end_passed(w, side[1].point_b);
   const bool one_rim = side[0].overlap > 0.0 && side[1].overlap > 0.0 && end0 == end1;
-  for (int k = 0; k < (one_rim ? 1 : 2); k++) found.contact[found.count++] = clamped(e, w, side[k]);
+  found.count = one_rim ? 1 : 2;
+  for (int k = 0; k < found.count; k++) found.contact[k] = clamped(e, w, side[k]);
   return found;
 }
 

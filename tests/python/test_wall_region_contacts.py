@@ -93,6 +93,21 @@ def test_symmetric_rod_in_a_bowl_feels_no_net_force():
     lmp.close()
 
 
+def test_symmetric_rod_across_a_hopper_feels_no_sideways_force():
+    """The rod lying across a hopper (a cone, radius 2.9 where the rod lies) at its axis: both
+    tips touch the side, the sideways pushes cancel and the two lift it (the deeper tip
+    alone pushed it sideways)."""
+    hopper = ("region r cone z 0 0 1.9 3.9 -4 4\n"
+              f"fix w all wall/gran/region/ellipsoid {LAW} region r contacts")
+    lmp = rod_scene(hopper, 90.0)
+    lmp.command("run 0 post no")
+    assert lmp.numpy.extract_fix("w", 1, 2)[0][0] == 2.0
+    f = np.array(lmp.numpy.extract_atom("f")[0], dtype=float)
+    lmp.close()
+    assert f[2] > 0.0
+    np.testing.assert_allclose(f[:2], 0.0, atol=1e-10 * f[2])
+
+
 def bounce_energy(wall, steps, tilt, velocity, spin, offset):
     """The rod started at `offset` from the axis with `velocity` and angular momentum `spin`;
     returns the kinetic energy (translation and rotation) whenever no wall touches it,
