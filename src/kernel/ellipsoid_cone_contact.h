@@ -19,7 +19,8 @@
    - the wall's contact radius is LAMMPS's region cone's, -2 rho at the wall's point of the
      contact (point_b); R* by wall_effective_radius.
    - the surface is the infinite cone: near its apex (closer than a particle) the depth above
-     is not the distance to the surface (a hopper's apex lies beyond its outlet).
+     is not the distance to the surface (a hopper's apex lies beyond its outlet); a finite
+     side ends at its rims (ellipsoid_rim_contact.h, the wall seam's finite side).
 
    Degenerate cases
    - Invalid ellipsoid, non-finite or zero axis, radius <= 0, non-finite slope: Degenerate.
