@@ -142,15 +142,16 @@ namespace {
   // F(t) = sum A_k x_k^2 / (A_k + t)^2 and F'(t)
   template <int N>
   double secular(const Eigen::Matrix<double, N, 1> &a2, const Eigen::Matrix<double, N, 1> &x,
-                 double t, double &slope)
+                 double t, double &slope, double &curvature)
   {
     double big_f = 0.0;
-    slope = 0.0;
+    slope = curvature = 0.0;
     for (int k = 0; k < N; k++) {
       if (x[k] == 0.0) continue;
       const double q = 1.0 / (a2[k] + t), term = a2[k] * x[k] * x[k] * q * q;
       big_f += term;
       slope -= 2.0 * term * q;
+      curvature += 6.0 * term * q * q;
     }
     return big_f;
   }
@@ -162,17 +163,16 @@ namespace {
                      double t)
   {
     const Eigen::Matrix<double, N, 1> g = y.cwiseQuotient(a2).normalized();
-    const Eigen::Matrix<double, N, N> h =
-        (Eigen::Matrix<double, N, 1>::Ones() + t * a2.cwiseInverse()).asDiagonal();
-    const Eigen::Matrix<double, N, N> projector =
-        Eigen::Matrix<double, N, N>::Identity() - g * g.transpose();
-    // on the tangent plane: the projected Hessian, the normal's eigenvalue lifted above all
-    const double lift = 1.0 + h.cwiseAbs().maxCoeff();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(
-        projector * h * projector + lift * g * g.transpose());
-    int negative = 0;
-    for (int k = 0; k < N; k++) negative += eigen.eigenvalues()[k] < 0.0;
-    return negative == N - 1;
+    const Eigen::Matrix<double, N, 1> h = Eigen::Matrix<double, N, 1>::Ones() + t * a2.cwiseInverse();
+    const Eigen::Matrix<double, N, 1> u = g.unitOrthogonal();
+    const double uu = u.dot(h.cwiseProduct(u));
+    if constexpr (N == 2) {
+      return uu < 0.0;
+    } else {
+      const Eigen::Matrix<double, N, 1> v = g.cross(u);
+      const double vv = v.dot(h.cwiseProduct(v)), uv = u.dot(h.cwiseProduct(v));
+      return uu + vv < 0.0 && uu * vv - uv * uv > 0.0;
+    }
   }
 
 }    // namespace
@@ -203,17 +203,22 @@ std::vector<StationaryPoint<N>> stationary_surface_points(const Eigen::Matrix<do
     const double reach = std::sqrt(sum);    // F <= 1 that far beyond the outer poles
     root(poles.front() - reach, poles.front(), true);
     root(poles.back(), poles.back() + reach, false);
-    // between two poles F is convex: at its lowest point below 1, a root either side
+    // between two poles F is convex: at its lowest point below 1, a root either side (the
+    // lowest point by Newton's method on F' inside a shrinking bracket)
     for (std::size_t j = 0; j + 1 < poles.size(); j++) {
-      double lo = poles[j], hi = poles[j + 1], slope = 0.0;
-      for (int it = 0; it < 200 && hi - lo > 4.0 * std::numeric_limits<double>::epsilon() *
-                                                 std::fabs(lo); it++) {
-        const double mid = 0.5 * (lo + hi);
-        secular<N>(a2, x, mid, slope);
-        (slope < 0.0 ? lo : hi) = mid;
+      double lo = poles[j], hi = poles[j + 1], slope = 0.0, curvature = 0.0;
+      double t = 0.5 * (lo + hi);
+      for (int it = 0; it < 200; it++) {
+        secular<N>(a2, x, t, slope, curvature);
+        (slope < 0.0 ? lo : hi) = t;
+        double next = t - slope / curvature;
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (next == t || hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * std::fabs(t))
+          break;
+        t = next;
       }
-      const double lowest = 0.5 * (lo + hi);
-      if (!(secular<N>(a2, x, lowest, slope) < 1.0)) continue;
+      const double lowest = t;
+      if (!(secular<N>(a2, x, lowest, slope, curvature) < 1.0)) continue;
       root(poles[j], lowest, false);
       root(lowest, poles[j + 1], true);
     }

@@ -139,21 +139,30 @@ FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
   FaceContacts found;
   ContactGeometry side[2];
   double neck = -HUGE_VAL;
-  int count = 0;
-  if (several_contacts(w))
-    count = w.shape == WallShape::Sphere
-        ? sphere_inside_contacts(e, w.center, w.radius, side, neck)
-        : rim_only(e, w) ? 0
-                         : concave_side_contacts(e, w.center, w.axis, w.radius,
-                                                 w.shape == WallShape::Cone ? w.slope : 0.0,
-                                                 side, neck);
   found.count = 1;
-  if (count == 1 && w.shape == WallShape::Cone) {    // the cone's one contact, found already
-    found.contact[0] = clamped(e, w, side[0]);
+  if (!several_contacts(w) || (w.shape != WallShape::Sphere && rim_only(e, w))) {
+    found.contact[0] = wall_contact(e, w);
     return found;
   }
-  if (count < 2) {
+  int count = 0;
+  if (w.shape == WallShape::Cone) {
+    count = concave_side_contacts(e, w.center, w.axis, w.radius, w.slope, side, neck);
+    if (count == 1) {    // its one contact, found already
+      found.contact[0] = clamped(e, w, side[0]);
+      return found;
+    }
+  } else {
+    // a second region only where the deepest point overlaps
     found.contact[0] = wall_contact(e, w);
+    if (found.contact[0].status == Status::Separated ||
+        found.contact[0].status == Status::Degenerate)
+      return found;
+    count = w.shape == WallShape::Sphere
+        ? sphere_inside_contacts(e, w.center, w.radius, side, neck)
+        : cylinder_inside_contacts(e, w.center, w.axis, w.radius, side, neck);
+  }
+  if (count < 2) {
+    if (count == 0 && w.shape == WallShape::Cone) found.contact[0] = wall_contact(e, w);
     return found;
   }
   share_neck(side[0], side[1], neck);
