@@ -42,7 +42,7 @@ ContactGeometry ellipsoid_cone_contact(const Ellipsoid &e, const Vec3 &center, c
 // contacts, the deeper first, and the neck between them (the higher of the profile's lowest
 // values on the two arcs between the maxima, each a closed-interval search of 32 samples, as
 // a depth) and returns 2; with one maximum its contact (ellipsoid_cone_contact's) and 1; 0
-// for unusable input. (A cone of slope 0 is a cylinder.)
+// for unusable input. A cylinder's side is the cone of slope 0.
 int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &axis, double radius,
                           double slope, ContactGeometry contacts[2], double &neck);
 

@@ -34,15 +34,6 @@ namespace EllipsoidDep {
 ContactGeometry ellipsoid_cylinder_contact(const Ellipsoid &e, const Vec3 &axis_point,
                                            const Vec3 &axis, double radius, bool inside);
 
-// Inside, a particle may reach beyond the side in two places (a rod across a pipe): the
-// distance from the axis point has a second local maximum on the projected ellipse. From every
-// stationary point of the 2-D secular equation (ellipsoid_point_extremum.h,
-// stationary_surface_points) this gives both maxima's contacts, the deeper first, and the
-// neck between them (the higher of the two minima, the lower being the nearest point), as a
-// depth; returns 2, or 0 with one maximum (ellipsoid_cylinder_contact's).
-int cylinder_inside_contacts(const Ellipsoid &e, const Vec3 &axis_point, const Vec3 &axis,
-                             double radius, ContactGeometry contacts[2], double &neck);
-
 }    // namespace EllipsoidDep
 
 #endif

@@ -15,17 +15,19 @@ namespace {
   constexpr int MAX_ITERATIONS = 200;
 
   // the root of F(t) = 1 in [lo, hi], F monotone there (increasing when rising); Newton's
-  // steps on 1/sqrt(F) - 1, nearly linear in t where one term dominates (close to a pole)
+  // steps on 1/sqrt(F) - 1, nearly linear in t where one term dominates (close to a pole).
+  // With an origin, t is counted from it (A_k + t = (A_k + origin) + t): near a pole taken as
+  // the origin A_k + t keeps its digits
   template <int N>
   double secular_root(const Eigen::Matrix<double, N, 1> &a2, const Eigen::Matrix<double, N, 1> &x,
-                      double lo, double hi, bool rising, bool &converged)
+                      double lo, double hi, bool rising, bool &converged, double origin = 0.0)
   {
     double t = 0.5 * (lo + hi);
     converged = false;
     for (int it = 0; it < MAX_ITERATIONS; it++) {
       double big_f = 0.0, dbig_f = 0.0;
       for (int k = 0; k < N; k++) {
-        const double q = 1.0 / (a2[k] + t);
+        const double q = 1.0 / ((a2[k] + origin) + t);
         const double term = a2[k] * x[k] * x[k] * q * q;
         big_f += term;
         dbig_f -= 2.0 * term * q;
@@ -55,10 +57,11 @@ namespace {
 
   template <int N>
   SurfaceExtremum<N> point_at(const Eigen::Matrix<double, N, 1> &a2,
-                              const Eigen::Matrix<double, N, 1> &x, double t, bool converged)
+                              const Eigen::Matrix<double, N, 1> &x, double t, bool converged,
+                              double origin = 0.0)
   {
     SurfaceExtremum<N> r;
-    for (int k = 0; k < N; k++) r.point[k] = a2[k] * x[k] / (a2[k] + t);
+    for (int k = 0; k < N; k++) r.point[k] = a2[k] * x[k] / ((a2[k] + origin) + t);
     r.distance = (r.point - x).norm();
     r.converged = converged;
     return r;
@@ -93,10 +96,12 @@ SurfaceExtremum<N> farthest_surface_point(const Eigen::Matrix<double, N, 1> &a2,
     r.distance = (r.point - x).norm();
     return r;
   }
+  // t counted from the pole -A_max it lies next to (x nearly without a component along the
+  // largest axis: A_max + t small)
   bool converged = false;
-  const double t = secular_root<N>(a2, x, -amax2 - std::sqrt(amax2) * x.norm(), -amax2, true,
-                                   converged);
-  return point_at<N>(a2, x, t, converged);
+  const double t = secular_root<N>(a2, x, -std::sqrt(amax2) * x.norm(), 0.0, true, converged,
+                                   -amax2);
+  return point_at<N>(a2, x, t, converged, -amax2);
 }
 
 template <int N>
@@ -133,8 +138,8 @@ SurfaceExtremum<N> nearest_surface_point(const Eigen::Matrix<double, N, 1> &a2,
     r.distance = (r.point - x).norm();
     return r;
   }
-  const double t = secular_root<N>(a2, x, -amin2, 0.0, false, converged);
-  return point_at<N>(a2, x, t, converged);
+  const double t = secular_root<N>(a2, x, 0.0, amin2, false, converged, -amin2);
+  return point_at<N>(a2, x, t, converged, -amin2);
 }
 
 namespace {
@@ -156,14 +161,15 @@ namespace {
     return big_f;
   }
 
-  // whether the stationary point y (multiplier t) is a local maximum of |y - x| on the
-  // surface: the Lagrangian's Hessian diag(1 + t / A_k) negative on the tangent plane
+  // whether the stationary point y (multiplier t, shifted: A_k + t) is a local maximum of
+  // |y - x| on the surface: the Lagrangian's Hessian diag(1 + t / A_k) negative on the
+  // tangent plane
   template <int N>
   bool local_maximum(const Eigen::Matrix<double, N, 1> &a2, const Eigen::Matrix<double, N, 1> &y,
-                     double t)
+                     const Eigen::Matrix<double, N, 1> &shifted)
   {
     const Eigen::Matrix<double, N, 1> g = y.cwiseQuotient(a2).normalized();
-    const Eigen::Matrix<double, N, 1> h = Eigen::Matrix<double, N, 1>::Ones() + t * a2.cwiseInverse();
+    const Eigen::Matrix<double, N, 1> h = shifted.cwiseQuotient(a2);
     const Eigen::Matrix<double, N, 1> u = g.unitOrthogonal();
     const double uu = u.dot(h.cwiseProduct(u));
     if constexpr (N == 2) {
@@ -183,8 +189,10 @@ std::vector<StationaryPoint<N>> stationary_surface_points(const Eigen::Matrix<do
 {
   using VecN = Eigen::Matrix<double, N, 1>;
   std::vector<StationaryPoint<N>> found;
-  auto add = [&](const VecN &y, double t, bool converged) {
-    found.push_back({y, (y - x).norm(), local_maximum<N>(a2, y, t), converged});
+  // t counted from origin
+  auto add = [&](const VecN &y, double origin, double t, bool converged) {
+    const VecN shifted = (a2 + VecN::Constant(origin)) + VecN::Constant(t);
+    found.push_back({y, (y - x).norm(), local_maximum<N>(a2, y, shifted), converged});
   };
   // the poles -A_k of the terms present, ascending and distinct
   std::vector<double> poles;
@@ -193,16 +201,18 @@ std::vector<StationaryPoint<N>> stationary_surface_points(const Eigen::Matrix<do
     if (x[k] != 0.0) poles.push_back(-a2[k]), sum += a2[k] * x[k] * x[k];
   std::sort(poles.begin(), poles.end());
   poles.erase(std::unique(poles.begin(), poles.end()), poles.end());
-  auto root = [&](double lo, double hi, bool rising) {
+  // a root between lo and hi, both counted from the nearer pole `origin`
+  auto root = [&](double lo, double hi, bool rising, double origin) {
+    if (!(hi > lo)) return;    // within round-off of the pole: unresolved
     bool converged = false;
-    const double t = secular_root<N>(a2, x, lo, hi, rising, converged);
-    const SurfaceExtremum<N> r = point_at<N>(a2, x, t, converged);
-    add(r.point, t, converged);
+    const double t = secular_root<N>(a2, x, lo, hi, rising, converged, origin);
+    const SurfaceExtremum<N> r = point_at<N>(a2, x, t, converged, origin);
+    add(r.point, origin, t, converged);
   };
   if (!poles.empty()) {
     const double reach = std::sqrt(sum);    // F <= 1 that far beyond the outer poles
-    root(poles.front() - reach, poles.front(), true);
-    root(poles.back(), poles.back() + reach, false);
+    root(-reach, 0.0, true, poles.front());
+    root(0.0, reach, false, poles.back());
     // between two poles F is convex: at its lowest point below 1, a root either side (the
     // lowest point by Newton's method on F' inside a shrinking bracket)
     for (std::size_t j = 0; j + 1 < poles.size(); j++) {
@@ -219,8 +229,8 @@ std::vector<StationaryPoint<N>> stationary_surface_points(const Eigen::Matrix<do
       }
       const double lowest = t;
       if (!(secular<N>(a2, x, lowest, slope, curvature) < 1.0)) continue;
-      root(poles[j], lowest, false);
-      root(lowest, poles[j + 1], true);
+      root(0.0, lowest - poles[j], false, poles[j]);
+      root(lowest - poles[j + 1], 0.0, true, poles[j + 1]);
     }
   }
   // the hard cases: t = -A for a squared semi-axis A along which x has no component (its
@@ -243,9 +253,9 @@ std::vector<StationaryPoint<N>> stationary_surface_points(const Eigen::Matrix<do
     if (!(rest > 0.0)) continue;
     // one point of each: both signs along the first such axis (a circle: its value is one)
     y[k] = std::sqrt(a2[k] * rest);
-    add(y, -a2[k], true);
+    add(y, -a2[k], 0.0, true);
     y[k] = -y[k];
-    add(y, -a2[k], true);
+    add(y, -a2[k], 0.0, true);
   }
   return found;
 }

@@ -157,9 +157,10 @@ FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w)
     if (found.contact[0].status == Status::Separated ||
         found.contact[0].status == Status::Degenerate)
       return found;
+    // a cylinder's side: the cone's profile of slope 0
     count = w.shape == WallShape::Sphere
         ? sphere_inside_contacts(e, w.center, w.radius, side, neck)
-        : cylinder_inside_contacts(e, w.center, w.axis, w.radius, side, neck);
+        : concave_side_contacts(e, w.center, w.axis, w.radius, 0.0, side, neck);
   }
   if (count < 2) {
     if (count == 0 && w.shape == WallShape::Cone) found.contact[0] = wall_contact(e, w);

@@ -60,9 +60,8 @@ double wall_clearance(const WallSurface &w, const Vec3 &x);
 // the deepest contact
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
 
-// Every separate contact region of the face: a cylinder's side from inside
-// (ellipsoid_cylinder_contact.h, cylinder_inside_contacts), a cone's side
-// (ellipsoid_cone_contact.h, concave_side_contacts) and a sphere from inside
+// Every separate contact region of the face: a cone's side and a cylinder's from inside (the
+// cone of slope 0; ellipsoid_cone_contact.h, concave_side_contacts) and a sphere from inside
 // (ellipsoid_sphere_contact.h, sphere_inside_contacts) may have two; a side's contact past
 // an end becomes that end's rim's (one per end). Other faces: wall_contact's one.
 constexpr int MAX_FACE_CONTACTS = 2;

@@ -853,8 +853,12 @@ TEST(WallShapes, SymmetricRodInAPipeTouchesBothSides)
   pipe.shape = WallShape::Cylinder;
   pipe.axis = Vec3::UnitZ();
   pipe.radius = 2.5;
+  // the axis through the rod's centre, or a round-off away (the secular equation's roots
+  // next to its poles: counted from them)
+  for (const Vec3 &offset : {Vec3(0.0, 0.0, 0.0), Vec3(1e-15, -3e-16, 0.0)})
   for (const WallShape shape : {WallShape::Cylinder, WallShape::Cone}) {
     pipe.shape = shape;    // a cone of slope 0 is the cylinder
+    pipe.center = offset;
     const Ellipsoid e = rod(Vec3::Zero(), turn(Vec3(0.3, 1.0, 0.0), 0.5), Vec3(3.0, 0.5, 0.5));
     const FaceContacts found = wall_contacts(e, pipe);
     ASSERT_EQ(found.count, 2);
@@ -901,7 +905,8 @@ TEST(WallShapes, ContactsContinuousWhereARegionSplits)
   EXPECT_LT(neck_last, -0.05);    // two at the end
 }
 
-// the same rod centred in a bowl narrower than it, every way round: both ends, as deep
+// the same rod centred in a bowl narrower than it (or a round-off away), every way round:
+// both tips, as deep
 TEST(WallShapes, SymmetricRodInABowlTouchesBothSides)
 {
   WallSurface bowl;
@@ -909,7 +914,11 @@ TEST(WallShapes, SymmetricRodInABowlTouchesBothSides)
   bowl.center = Vec3(0.2, -0.1, 0.3);
   bowl.radius = 2.9;
   for (const double angle : {0.0, 0.4, 1.3, 2.9}) {
-    const Ellipsoid e = rod(bowl.center, turn(Vec3(0.3, 1.0, -0.5), angle), Vec3(3.0, 0.5, 0.4));
+    const Vec3 nudge = angle > 2.0 ? Vec3(3e-19, -1e-18, 2e-19)
+        : angle > 1.0              ? Vec3(1e-15, 2e-16, -1e-15)
+                                   : Vec3(0.0, 0.0, 0.0);
+    const Ellipsoid e =
+        rod(bowl.center + nudge, turn(Vec3(0.3, 1.0, -0.5), angle), Vec3(3.0, 0.5, 0.4));
     const FaceContacts found = wall_contacts(e, bowl);
     ASSERT_EQ(found.count, 2) << angle;
     const ContactGeometry &a = found.contact[0], &b = found.contact[1];
@@ -917,6 +926,7 @@ TEST(WallShapes, SymmetricRodInABowlTouchesBothSides)
     EXPECT_NEAR(a.overlap, 0.1, 1e-12);
     EXPECT_NEAR(b.overlap, 0.1, 1e-12);
     EXPECT_NEAR((a.normal + b.normal).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((a.point_a - b.point_a).norm(), 6.0, 1e-12);
   }
 }
 
