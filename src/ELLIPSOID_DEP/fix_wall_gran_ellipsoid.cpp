@@ -190,43 +190,48 @@ void FixWallGranEllipsoid::wall_forces()
 
     for (int k = 0; k < nwalls; k++) {
       const WallSurface &w = walls[k];
-      double *history = wall_history(i, k);
       // bounding sphere clear of the wall: no contact
-      ContactGeometry g;
+      FaceContacts found;
       if (wall_clearance(w, Vec3(x[i][0], x[i][1], x[i][2])) < bound) {
         if (!built) {
           state.shape = atoms.ellipsoid(i);
           built = true;
         }
-        g = wall_contact(state.shape, w);
-        // a curved wall's iteration cap: the last iterate is used, and counted
-        if (g.status == Status::NotConverged) {
-          unconverged++;
-          if (g.overlap > 0.0) g.status = Status::Overlapping;
-        } else if (g.status == Status::Degenerate) {
-          degenerate++;
+        found = wall_contacts(state.shape, w);
+        for (int c = 0; c < found.count; c++) {
+          ContactGeometry &g = found.contact[c];
+          // a curved wall's iteration cap: the last iterate is used, and counted
+          if (g.status == Status::NotConverged) {
+            unconverged++;
+            if (g.overlap > 0.0) g.status = Status::Overlapping;
+          } else if (g.status == Status::Degenerate) {
+            degenerate++;
+          }
         }
       }
-      if (g.status != Status::Overlapping) {
-        if (history && history_update) std::fill_n(history, law.history_size(), 0.0);
-        continue;
+      // each contact region's history slot (a new one's cleared; setup: zeros)
+      double *slot[MAX_FACE_CONTACTS];
+      match_history(i, k, found, slot);
+      for (int c = 0; c < found.count; c++) {
+        const ContactGeometry &g = found.contact[c];
+        if (g.status != Status::Overlapping) continue;
+        if (!moving) {
+          atoms.add_motion(i, state);
+          moving = true;
+        }
+        // setup forces look at the stored history without advancing it (on a copy, dt 0), as
+        // the pair's do: a step's displacement there would push the particle once, unrecorded
+        const LawHistory law_history(slot[c], law.history_size(), history_update);
+        const ContactForce result =
+            law.compute(g, wall_motion(state, g.point, velocity_at(k, g.point_b)),
+                        history_update ? dt : 0.0, law_history.get());
+        for (int d = 0; d < 3; d++) {
+          f[i][d] += result.force_i[d];
+          torque[i][d] += result.torque_i[d];
+          wall_force[3 * k + d] -= result.force_i[d];
+        }
+        if (peratom_flag) record_contact(i, result, g);
       }
-      if (!moving) {
-        atoms.add_motion(i, state);
-        moving = true;
-      }
-      // setup forces look at the stored history without advancing it (on a copy, dt 0), as
-      // the pair's do: a step's displacement there would push the particle once, unrecorded
-      const LawHistory law_history(history, law.history_size(), history_update);
-      const ContactForce result =
-          law.compute(g, wall_motion(state, g.point, velocity_at(k, g.point_b)),
-                      history_update ? dt : 0.0, law_history.get());
-      for (int d = 0; d < 3; d++) {
-        f[i][d] += result.force_i[d];
-        torque[i][d] += result.torque_i[d];
-        wall_force[3 * k + d] -= result.force_i[d];
-      }
-      if (peratom_flag) record_contact(i, result, g);
     }
   }
   if (motion.kind == Motion::Kind::Servo) {

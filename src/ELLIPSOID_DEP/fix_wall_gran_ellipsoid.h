@@ -105,8 +105,14 @@ class FixWallGranEllipsoid : public Fix {
                       const EllipsoidDep::ContactGeometry &g);
   double servo_target() const;    // in force units
   EllipsoidDep::ForceLaw law;
-  int size_history;        // the law's history size times the number of walls
-  double **history_one;    // per atom, per wall
+  // the per-atom history (fix_wall_gran_ellipsoid_history.cpp): per wall one slot per contact
+  // region it may have (several_contacts: MAX_FACE_CONTACTS, each the contact's last normal
+  // and the law's history; other walls: one, the law's history); none without a law history
+  int size_history;                   // per atom
+  std::vector<int> history_offset;    // of each wall's first slot
+  int history_layout();
+  void match_history(int i, int k, const EllipsoidDep::FaceContacts &found, double *slot[]);
+  double **history_one;    // per atom
   bool history_update;
   double impact_velocity;          // keyword; 0: the fastest atom of the group
   ContactTimes times_reported;    // last contact and damping times logged
@@ -118,11 +124,6 @@ class FixWallGranEllipsoid : public Fix {
   bigint unconverged = 0, degenerate = 0;    // curved walls' kernel failures in this run
 
   void wall_forces();
-  // the law's history of atom i against wall k (null without history)
-  double *wall_history(int i, int k) const
-  {
-    return size_history ? &history_one[i][law.history_size() * k] : nullptr;
-  }
 };
 
 }    // namespace LAMMPS_NS

@@ -226,7 +226,7 @@ void FixWallGranEllipsoid::allocate_walls()
   wall_force.assign(3 * nwalls, 0.0);
   wall_force_all.assign(3 * nwalls, 0.0);
 
-  size_history = law.history_size() * nwalls;
+  size_history = history_layout();
   restart_peratom = size_history > 0 ? 1 : 0;
   maxexchange = size_history;
   if (peratom_flag) {

@@ -167,17 +167,17 @@ Vec3 FixWallGranRegionEllipsoid::velocity_at(int /*wall*/, const Vec3 &point) co
   return v;
 }
 
-// as LAMMPS's fix wall/gran/region: only particles whose centres lie on the region's side.
-// Region::match() takes every point for a region with an open face (LAMMPS then also finds
-// contacts with the rims from outside, which the faces here do not model); here the centre
-// must be on the region's side of its shape, open faces closed: a particle that leaves
-// through an open face is free of the region (it would otherwise meet the infinite surface
-// of a side beyond its rim)
+// as LAMMPS's fix wall/gran/region: particles whose centres lie on the region's side, and
+// for a cylinder or cone with side in those that left it through an open end (they meet the
+// rim there). Region::match() takes every point of a region with an open face: LAMMPS also
+// meets particles outside a side (the outer face of a funnel) or a closed cap from outside,
+// which the faces here do not model (doc/fix_wall_gran_region_ellipsoid.rst)
 bool FixWallGranRegionEllipsoid::reaches_walls(int i) const
 {
   double x = atom->x[i][0], y = atom->x[i][1], z = atom->x[i][2];
   if (region->dynamic) region->inverse_transform(x, y, z);
-  return (region->inside(x, y, z) != 0) == (region->interior != 0);
+  return (region->inside(x, y, z) != 0) == (region->interior != 0) ||
+      past_open_end(Vec3(x, y, z));
 }
 
 /* ----------------------------------------------------------------------

@@ -38,6 +38,8 @@ class FixWallGranRegionEllipsoid : public FixWallGranEllipsoid {
   std::vector<EllipsoidDep::WallSurface> region_faces();
   bool cone_from_probes(const std::vector<EllipsoidDep::Vec3> &probes,
                         EllipsoidDep::WallSurface &w);
+  void side_extent(EllipsoidDep::WallSurface &w);
+  bool past_open_end(const EllipsoidDep::Vec3 &x) const;
   void check_periodic_crossing();    // the _periodic file
 };
 

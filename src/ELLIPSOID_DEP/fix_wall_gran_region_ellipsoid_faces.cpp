@@ -63,6 +63,47 @@ bool cone_side(const Vec3 xs[2], const Vec3 inwards[2], const double local_radiu
 
 }    // namespace
 
+// where a side ends along its axis (a coordinate axis), both ways from its axis point in the
+// region's shape: the last coordinate inside() takes, by bisection to adjacent doubles
+// (LAMMPS's lo and hi exactly); past AT_INFINITY none. An open end has no face of its own.
+void FixWallGranRegionEllipsoid::side_extent(WallSurface &w)
+{
+  int k = 0;
+  while (w.axis[k] == 0.0) k++;
+  auto inside_at = [&](double coordinate) {
+    Vec3 p = w.center;
+    p[k] = coordinate;
+    return region->inside(p[0], p[1], p[2]) != 0;
+  };
+  for (const double sign : {-1.0, 1.0}) {
+    double in = w.center[k], step = std::max(1.0, std::fabs(in)), out = in + sign * step;
+    while (inside_at(out) && std::fabs(out) < PROBE_CUTOFF) step *= 2.0, out = in + sign * step;
+    double end = sign * INFINITY;
+    if (std::fabs(out) < PROBE_CUTOFF) {
+      for (;;) {
+        const double mid = 0.5 * (in + out);
+        if (mid == in || mid == out) break;
+        (inside_at(mid) ? in : out) = mid;
+      }
+      if (std::fabs(in) < AT_INFINITY) end = in - w.center[k];
+    }
+    (sign < 0.0 ? w.cap_lo : w.cap_hi) = end;
+  }
+}
+
+// a centre (in the region's own frame) that left a side through an open end: LAMMPS's
+// fix wall/gran/region meets it with the rim there (region surface_exterior)
+bool FixWallGranRegionEllipsoid::past_open_end(const Vec3 &x) const
+{
+  if (!region->openflag || !region->interior) return false;
+  for (const WallSurface &w : faces) {
+    if (w.shape != WallShape::Cone && !(w.shape == WallShape::Cylinder && w.inside)) continue;
+    const double s = w.axis.dot(x - w.center);
+    return (s < w.cap_lo && region->open_faces[0]) || (s > w.cap_hi && region->open_faces[1]);
+  }
+  return false;
+}
+
 // the cone's side from the lateral contacts of probe pairs (the first with each other)
 bool FixWallGranRegionEllipsoid::cone_from_probes(const std::vector<Vec3> &probes,
                                                   WallSurface &w)
@@ -174,6 +215,7 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
       if (!cone_from_probes(probes, w))
         error->all(FLERR, "Fix wall/gran/region/ellipsoid: cannot find region {}'s cone axis",
                    region_id);
+      side_extent(w);
     } else {
       // LAMMPS's interior contact radius: -R for a sphere, -2R for a cylinder's side
       w.shape = shape == "sphere" ? WallShape::Sphere : WallShape::Cylinder;
@@ -188,6 +230,7 @@ std::vector<WallSurface> FixWallGranRegionEllipsoid::region_faces()
         if (w.axis.norm() != 1.0)
           error->all(FLERR, "Fix wall/gran/region/ellipsoid: cannot find region {}'s axis",
                      region_id);
+        if (inside) side_extent(w);
       }
     }
     found_faces.emplace_back(contact.iwall, w);

@@ -19,7 +19,8 @@
    - the wall's contact radius is LAMMPS's region cone's, -2 rho at the wall's point of the
      contact (point_b); R* by wall_effective_radius.
    - the surface is the infinite cone: near its apex (closer than a particle) the depth above
-     is not the distance to the surface (a hopper's apex lies beyond its outlet).
+     is not the distance to the surface (a hopper's apex lies beyond its outlet); a finite
+     side ends at its rims (ellipsoid_rim_contact.h, the wall seam's finite side).
 
    Degenerate cases
    - Invalid ellipsoid, non-finite or zero axis, radius <= 0, non-finite slope: Degenerate.
@@ -34,6 +35,16 @@ namespace EllipsoidDep {
 
 ContactGeometry ellipsoid_cone_contact(const Ellipsoid &e, const Vec3 &center, const Vec3 &axis,
                                        double radius, double slope);
+
+// A particle may reach beyond a concave side in separate places (a rod across a pipe touches
+// both sides): the profile f(phi) above has a second maximum. With two maxima (the two best
+// discrete maxima of the 64 samples, refined, apart by more than a sample) this gives both
+// contacts, the deeper first, and the neck between them (the higher of the profile's lowest
+// values on the two arcs between the maxima, each a closed-interval search of 32 samples, as
+// a depth) and returns 2; with one maximum its contact (ellipsoid_cone_contact's) and 1; 0
+// for unusable input. A cylinder's side is the cone of slope 0.
+int concave_side_contacts(const Ellipsoid &e, const Vec3 &center, const Vec3 &axis, double radius,
+                          double slope, ContactGeometry contacts[2], double &neck);
 
 }    // namespace EllipsoidDep
 

@@ -7,7 +7,8 @@
    within a sample spacing either side (to ~1e-7 of it) and finished by Newton's method on
    f' = 0 (the caller's analytic f', f''). On a closed interval a minimum at an end is one
    (f' pointing out of the interval there). A Newton iteration that does not settle is
-   reported (converged = false), never dropped.
+   reported (converged = false), never dropped; where it went uphill (a kink of f) the
+   golden section's point is kept.
 
    F has  double value(double x) const  and  void derivatives(double x, double &df,
    double &ddf) const.
@@ -27,9 +28,11 @@ struct IntervalMinimum {
   bool converged = false;
 };
 
+// The best `refined` discrete minima of the samples, each refined, in the samples' order of
+// value (best first before refinement)
 template <class F>
-IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool periodic, int samples,
-                                     int refined = 2)
+std::vector<IntervalMinimum> local_minima_on_interval(const F &f, double lo, double hi,
+                                                      bool periodic, int samples, int refined)
 {
   constexpr int GOLDEN_STEPS = 30;
   constexpr int NEWTON_STEPS = 20;
@@ -51,7 +54,7 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
   auto clamp = [&](double x) {
     return periodic ? x : std::min(hi, std::max(lo, x));
   };
-  IntervalMinimum best;
+  std::vector<IntervalMinimum> found;
   for (std::size_t k = 0; k < std::min<std::size_t>(refined, dips.size()); k++) {
     const double centre = lo + dips[k] * spacing;
     double a = clamp(centre - spacing), b = clamp(centre + spacing);
@@ -70,6 +73,7 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
     }
     // a bracket that never left an end of the interval: the minimum may lie on it
     double x = from_lo && a == lo ? lo : from_hi && b == hi ? hi : 0.5 * (a + b);
+    const double bracketed = x;
     bool converged = false;
     for (int it = 0; it < NEWTON_STEPS && !converged; it++) {
       double df, ddf;
@@ -83,9 +87,21 @@ IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool peri
       converged = std::fabs(next - x) <= 1e-12;
       x = next;
     }
-    const double value = f.value(x);
-    if (value < best.value) best = {x, value, converged};
+    double value = f.value(x);
+    // an iteration that did not settle and went uphill (a kink): the bracket's point
+    if (!converged && value > f.value(bracketed)) x = bracketed, value = f.value(x);
+    found.push_back({x, value, converged});
   }
+  return found;
+}
+
+template <class F>
+IntervalMinimum minimise_on_interval(const F &f, double lo, double hi, bool periodic, int samples,
+                                     int refined = 2)
+{
+  IntervalMinimum best;
+  for (const IntervalMinimum &m : local_minima_on_interval(f, lo, hi, periodic, samples, refined))
+    if (m.value < best.value) best = m;
   return best;
 }
 

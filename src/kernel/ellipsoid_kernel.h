@@ -26,6 +26,7 @@
 #include "ellipsoid_cone_contact.h"
 #include "ellipsoid_box_contact.h"
 #include "ellipsoid_capped_cylinder_contact.h"
+#include "ellipsoid_rim_contact.h"
 #include "ellipsoid_shape.h"
 #include "ellipsoid_wall_contact.h"
 #include "ellipsoid_wang.h"

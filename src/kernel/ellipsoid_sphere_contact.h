@@ -27,6 +27,16 @@ namespace EllipsoidDep {
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid &e, const Vec3 &center, double radius,
                                          bool inside);
 
+// Inside, a particle may reach beyond the sphere in two places (a rod longer than the bowl is
+// wide): |p - s| has a second local maximum on the ellipsoid (at most two: one multiplier t
+// below -A_max, the other between -A_max and -A_mid). From every stationary point of the
+// secular equation (ellipsoid_point_extremum.h, stationary_surface_points) this gives both
+// maxima's contacts, the deeper first, and the neck between them: the highest stationary
+// value that is neither a maximum nor the lowest (the saddles between the maxima), as a
+// depth; returns 2, or 0 with one maximum (ellipsoid_sphere_contact's).
+int sphere_inside_contacts(const Ellipsoid &e, const Vec3 &center, double radius,
+                           ContactGeometry contacts[2], double &neck);
+
 }    // namespace EllipsoidDep
 
 #endif

@@ -11,15 +11,16 @@
    - The ellipsoid is body A, the wall body B. The result's normal points from the particle
      into the wall, overlap > 0 in contact, R* from the curvatures at the contact point.
    - wall_clearance(w, x): the signed distance of point x from the surface, positive on the
-     particle side. A particle whose bounding radius is below its centre's clearance cannot
-     touch the wall.
+     particle side (a centre past an end of a finite side: its distance from that end's
+     rim). A particle whose bounding radius is below its centre's clearance cannot touch the
+     wall.
 
    - R*: the particle's Gaussian radius at the contact and the wall's contact radius, LAMMPS's
      region convention (wall_effective_radius, ellipsoid_shape.h).
 
    Degenerate cases: those of the shape's contact (ellipsoid_plane_contact.h,
    ellipsoid_sphere_contact.h, ellipsoid_cylinder_contact.h, ellipsoid_cone_contact.h,
-   ellipsoid_box_contact.h, ellipsoid_capped_cylinder_contact.h).
+   ellipsoid_rim_contact.h, ellipsoid_box_contact.h, ellipsoid_capped_cylinder_contact.h).
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_ELLIPSOID_WALL_CONTACT_H
@@ -32,7 +33,7 @@ namespace EllipsoidDep {
 enum class WallShape {
   Plane,         // the solid half-space {x : normal.x <= offset}
   Sphere,        // the sphere |x - center| = radius; inside: particles in the ball
-  Cylinder,      // the infinite cylinder through center along axis; inside: particles in it
+  Cylinder,      // the cylinder through center along axis; inside: particles in it
   Cone,          // particles inside rho = radius + slope s about center, axis (s along axis)
   Box            // the solid box lower <= frame^T (x - center) <= upper; particles outside
 };
@@ -46,8 +47,9 @@ struct WallSurface {
   double radius = 0.0;            // Sphere, Cylinder; Cone: its radius at center
   double slope = 0.0;             // Cone: d rho / d s
   bool inside = true;             // Sphere, Cylinder: the particles' side
-  // Cylinder outside: its caps along axis from center (infinite: none; inside, the caps are
-  // faces of their own)
+  // Cylinder, Cone: where the side ends along axis from center (infinite: nowhere). Met from
+  // inside, the side between them and their rims (ellipsoid_rim_contact.h; the caps, when
+  // closed, are faces of their own); a cylinder met from outside: the solid's caps
   double cap_lo = -INFINITY, cap_hi = INFINITY;
   // Box: its unit edge directions (columns) and its faces along them (infinite: none)
   Mat3 frame = Mat3::Identity();
@@ -55,10 +57,30 @@ struct WallSurface {
 };
 
 double wall_clearance(const WallSurface &w, const Vec3 &x);
+// the deepest contact
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
 // the same surface, every field equal (a field added to WallSurface belongs here too)
 bool operator==(const WallSurface &a, const WallSurface &b);
 inline bool operator!=(const WallSurface &a, const WallSurface &b) { return !(a == b); }
+
+// Every separate contact region of the face: a cone's side and a cylinder's from inside (the
+// cone of slope 0; ellipsoid_cone_contact.h, concave_side_contacts) and a sphere from inside
+// (ellipsoid_sphere_contact.h, sphere_inside_contacts) may have two; a side's contact past
+// an end becomes that end's rim's (one per end). Other faces: wall_contact's one.
+constexpr int MAX_FACE_CONTACTS = 2;
+struct FaceContacts {
+  int count = 0;
+  ContactGeometry contact[MAX_FACE_CONTACTS];
+};
+bool several_contacts(const WallSurface &w);
+FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w);
+
+// Two contacts of one face whose regions join above the neck (neck > 0: the particle lies
+// beyond the face all the way between them) share it: the shallower loses the neck's depth,
+// the deeper the neck's depth times the ratio of their excesses over it. Apart (neck <= 0)
+// both keep their depths. So a contact region that splits in two, a second maximum that
+// appears or vanishes, or two maxima that swap order change the overlaps continuously.
+void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck);
 
 }    // namespace EllipsoidDep
 

@@ -631,3 +631,384 @@ TEST(WallShapes, BoxInfiniteBoundIsAFarFace)
     EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9);
   }
 }
+
+// ---------------------------------------------------------------------------------------
+// A finite side met from inside (a cylinder's or cone's side between its ends) and the rims
+// where it ends. The rim's oracle: the depth of a rim point in the particle is its distance
+// from the surface (the oracle's search above, on -|p - q|), signed by the body frame's
+// inside test; the rim's deepest point from 60 angles, the best two refined by golden section.
+
+namespace {
+
+bool inside_raw(const RawEllipsoid &r, const V3L &q)
+{
+  const std::array<V3L, 3> rot = rotation_rows(r);
+  LD sum = 0;
+  for (int k = 0; k < 3; k++) {
+    LD body = 0;
+    for (int i = 0; i < 3; i++) body += rot[i][k] * (q[i] - r.c[i]);
+    sum += body * body / ((LD) r.axes[k] * r.axes[k]);
+  }
+  return sum < 1;
+}
+
+// the distance of q from the surface: a 24 x 48 grid of angles, then a pattern search from
+// the best three
+LD rim_point_depth(const RawEllipsoid &r, const V3L &q)
+{
+  const LD pi = 3.141592653589793238462643383279502884L;
+  auto distance = [&](LD t, LD p) {
+    const V3L y = surface_point(r, t, p);
+    return norm3(V3L{y[0] - q[0], y[1] - q[1], y[2] - q[2]});
+  };
+  struct Start { LD d, t, p; };
+  std::vector<Start> grid;
+  for (int i = 0; i <= 24; i++)
+    for (int j = 0; j < 48; j++) grid.push_back({distance(pi * i / 24, 2 * pi * j / 48), pi * i / 24, 2 * pi * j / 48});
+  std::partial_sort(grid.begin(), grid.begin() + 3, grid.end(),
+                    [](const Start &a, const Start &b) { return a.d < b.d; });
+  LD best = grid[0].d;
+  for (int s = 0; s < 3; s++) {
+    LD t = grid[s].t, p = grid[s].p, d = grid[s].d, step = pi / 24;
+    while (step > 1e-13L) {
+      bool moved = false;
+      for (const auto &dir : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1},
+                              {-1, -1}, {1, -1}, {-1, 1}}) {
+        const LD dn = distance(t + dir[0] * step, p + dir[1] * step);
+        if (dn < d) d = dn, t += dir[0] * step, p += dir[1] * step, moved = true;
+      }
+      if (!moved) step /= 2;
+    }
+    best = std::min(best, d);
+  }
+  return inside_raw(r, q) ? best : -best;
+}
+
+V3L rim_point(const Vec3 &k, const Vec3 &u, double rho, LD theta)
+{
+  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  V3L q;
+  for (int d = 0; d < 3; d++) q[d] = k[d] + rho * (std::cos(theta) * e1[d] + std::sin(theta) * e2[d]);
+  return q;
+}
+
+LD rim_oracle(const RawEllipsoid &r, const Vec3 &k, const Vec3 &u, double rho)
+{
+  const LD pi = 3.141592653589793238462643383279502884L;
+  constexpr int N = 60;
+  std::vector<std::pair<LD, int>> samples;
+  for (int j = 0; j < N; j++) samples.push_back({rim_point_depth(r, rim_point(k, u, rho, 2 * pi * j / N)), j});
+  std::partial_sort(samples.begin(), samples.begin() + 2, samples.end(),
+                    [](const auto &a, const auto &b) { return a.first > b.first; });
+  LD best = samples[0].first;
+  for (int s = 0; s < 2; s++) {
+    LD a = 2 * pi * (samples[s].second - 1) / N, b = 2 * pi * (samples[s].second + 1) / N;
+    const LD ratio = (std::sqrt(5.0L) - 1) / 2;
+    for (int it = 0; it < 36; it++) {
+      const LD x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
+      if (rim_point_depth(r, rim_point(k, u, rho, x1)) > rim_point_depth(r, rim_point(k, u, rho, x2)))
+        b = x2;
+      else
+        a = x1;
+    }
+    best = std::max(best, rim_point_depth(r, rim_point(k, u, rho, (a + b) / 2)));
+  }
+  return best;
+}
+
+}    // namespace
+
+TEST(WallShapes, RimAgainstBruteForce)
+{
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int overlapping = 0;
+  for (int k = 0; k < 8; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    r.c[0] = r.c[1] = r.c[2] = 0.0;
+    const Vec3 axis = random_unit(rng), centre(0.3, -0.2, 0.1);
+    const double rho = 1.5 + 2.0 * u(rng);
+    // a rim point within -0.05 to 0.3 of the smallest semi-axis of the particle's supporting
+    // plane along a random direction n normal to the rim there, inside it (the rim grazes the
+    // particle, shallower than its medial surface, where the depth along the rim has a kink)
+    const double theta = 2.0 * PI * u(rng);
+    const V3L q0 = rim_point(centre, axis, rho, theta);
+    const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+    const Vec3 tangent = -std::sin(theta) * e1 + std::cos(theta) * e2;
+    Vec3 n = random_unit(rng);
+    n = (n - n.dot(tangent) * tangent).normalized();
+    const double depth = (0.35 * u(rng) - 0.05) * std::min(r.axes[1], r.axes[2]);
+    const Vec3 offset = -(support(kernel_ellipsoid(r).inverse_form, n) - depth) * n;
+    for (int d = 0; d < 3; d++) r.c[d] = static_cast<double>(q0[d]) + offset[d];
+    const ContactGeometry g = ellipsoid_rim_contact(kernel_ellipsoid(r), centre, axis, rho, -2.0 * rho);
+    ASSERT_TRUE(g.status == Status::Overlapping || g.status == Status::Separated)
+        << static_cast<int>(g.status) << " case " << k;
+    // the reported point's depth is the oracle's, and no rim point is deeper
+    EXPECT_NEAR(g.overlap, static_cast<double>(rim_point_depth(r, to_ld(g.point_b))), 1e-10);
+    EXPECT_NEAR(g.overlap, static_cast<double>(rim_oracle(r, centre, axis, rho)), 1e-10);
+    EXPECT_NEAR(std::fabs(axis.dot(g.point_b - centre)), 0.0, 1e-12);
+    EXPECT_NEAR((g.point_a - g.overlap * g.normal - g.point_b).norm(), 0.0, 1e-12);
+    if (g.status == Status::Overlapping) overlapping++;
+  }
+  EXPECT_GE(overlapping, 4);
+}
+
+// a sphere meets a rim at the rim point nearest to its centre: LAMMPS's segment clamped to
+// the end (overlap r - |c - q|, R* from -2 rho)
+TEST(WallShapes, SphereAtRimClosedForm)
+{
+  const double r = 0.5, quat[4] = {1, 0, 0, 0};
+  WallSurface cone;
+  cone.shape = WallShape::Cone;
+  cone.center = Vec3(0.0, 0.0, 1.0);
+  cone.radius = 1.0;
+  cone.slope = 0.5;
+  cone.cap_lo = 0.0;    // the outlet: radius 1 at z = 1
+  // the first centre above the outlet (its foot on the side would lie below it), two below
+  for (const Vec3 &c : {Vec3(0.7, 0.1, 1.05), Vec3(0.75, -0.05, 0.9), Vec3(0.5, 0.5, 0.8)}) {
+    const Ellipsoid e = make_ellipsoid(c, quat, Vec3(r, r, r));
+    const ContactGeometry g = wall_contact(e, cone);
+    const Vec3 radial = Vec3(c[0], c[1], 0.0).normalized();
+    const Vec3 q = Vec3(0.0, 0.0, 1.0) + radial;
+    ASSERT_EQ(g.status, Status::Overlapping);
+    EXPECT_NEAR(g.overlap, r - (q - c).norm(), 1e-13);
+    EXPECT_NEAR((g.normal - (q - c).normalized()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((g.point_b - q).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(g.effective_radius, r * (-2.0) / (r - 2.0), 1e-13);
+  }
+}
+
+// the finite side's overlap and normal are continuous where its foot crosses the end (the side
+// gives way to the rim): a tilted ellipsoid slid along a hopper's axis past its outlet
+TEST(WallShapes, FiniteSideContinuousAcrossItsEnd)
+{
+  const double quat[4] = {0.9, 0.3, -0.2, 0.25};
+  WallSurface cone;
+  cone.shape = WallShape::Cone;
+  cone.radius = 1.2;
+  cone.slope = 0.6;
+  cone.cap_lo = 0.0;
+  int side = 0, rims = 0;
+  ContactGeometry last;
+  for (int k = 0; k <= 400; k++) {
+    const double s = 0.6 - 0.002 * k;
+    // the centre kept near the side as it slides
+    const Ellipsoid e = make_ellipsoid(Vec3(1.2 + 0.6 * s - 0.35, 0.05, s), quat, Vec3(0.5, 0.3, 0.2));
+    const ContactGeometry g = wall_contact(e, cone);
+    if (g.status != Status::Overlapping) break;    // the particle left the rim
+    (g.point_b[2] > 1e-12 ? side : rims)++;
+    if (k > 0) {
+      EXPECT_LT(std::fabs(g.overlap - last.overlap), 0.004) << s;
+      EXPECT_LT((g.normal - last.normal).norm(), 0.02) << s;
+    }
+    last = g;
+  }
+  EXPECT_GT(side, 20);
+  EXPECT_GT(rims, 20);
+}
+
+// a particle passing through an outlet wider than it meets nothing; the side continued past
+// the outlet (the infinite cone) would cut it
+TEST(WallShapes, OutletWiderThanTheParticleIsAHole)
+{
+  const double quat[4] = {1, 0.2, 0.1, 0};
+  const Ellipsoid e = make_ellipsoid(Vec3(0.02, 0.0, 0.1), quat, Vec3(0.75, 0.6, 0.5));
+  WallSurface cone;
+  cone.shape = WallShape::Cone;
+  cone.radius = 0.8;    // region cone z 0 0 0.8 3.0 0 4
+  cone.slope = 2.2 / 4.0;
+  EXPECT_EQ(wall_contact(e, cone).status, Status::Overlapping);    // the infinite cone
+  cone.cap_lo = 0.0;
+  cone.cap_hi = 4.0;
+  EXPECT_EQ(wall_contact(e, cone).status, Status::Separated);
+  // past the outlet: free of the rim
+  EXPECT_EQ(wall_contact(make_ellipsoid(Vec3(0.02, 0.0, -0.3), quat, Vec3(0.75, 0.6, 0.5)), cone)
+                .status,
+            Status::Separated);
+}
+
+// ---------------------------------------------------------------------------------------
+// Several contact regions of one concave face
+
+namespace {
+
+Ellipsoid rod(const Vec3 &centre, const Mat3 &rotation, const Vec3 &semi_axes)
+{
+  return make_ellipsoid(centre, rotation, semi_axes);
+}
+
+Mat3 turn(const Vec3 &axis, double angle)
+{
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+}    // namespace
+
+// a rod (shape 6 1 1) tilted across a pipe narrower than it, centred on its axis: both ends
+// touch, as deep as each other, pushed in opposite directions (net force 0, as two planes at
+// the same places give); the deepest contact alone was one of them
+TEST(WallShapes, SymmetricRodInAPipeTouchesBothSides)
+{
+  WallSurface pipe;
+  pipe.shape = WallShape::Cylinder;
+  pipe.axis = Vec3::UnitZ();
+  pipe.radius = 2.5;
+  // the axis through the rod's centre, or a round-off away (the secular equation's roots
+  // next to its poles: counted from them)
+  for (const Vec3 &offset : {Vec3(0.0, 0.0, 0.0), Vec3(1e-15, -3e-16, 0.0)})
+  for (const WallShape shape : {WallShape::Cylinder, WallShape::Cone}) {
+    pipe.shape = shape;    // a cone of slope 0 is the cylinder
+    pipe.center = offset;
+    const Ellipsoid e = rod(Vec3::Zero(), turn(Vec3(0.3, 1.0, 0.0), 0.5), Vec3(3.0, 0.5, 0.5));
+    const FaceContacts found = wall_contacts(e, pipe);
+    ASSERT_EQ(found.count, 2);
+    const ContactGeometry &a = found.contact[0], &b = found.contact[1];
+    EXPECT_EQ(a.status, Status::Overlapping);
+    EXPECT_EQ(b.status, Status::Overlapping);
+    EXPECT_NEAR(a.overlap, b.overlap, 1e-12);
+    EXPECT_NEAR((a.normal + b.normal).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((a.point_a + b.point_a).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(a.overlap, wall_contact(e, pipe).overlap, 1e-12);
+  }
+}
+
+// a flat rod lying along the wall of a pipe, its ends beyond it, turned about its long axis:
+// its middle leaves the wall (the neck between the two contact regions crosses zero: one
+// region splits into two) and the overlaps and normals change continuously through it
+TEST(WallShapes, ContactsContinuousWhereARegionSplits)
+{
+  WallSurface pipe;
+  pipe.shape = WallShape::Cylinder;
+  pipe.axis = Vec3::UnitZ();
+  pipe.radius = 2.0;
+  const Vec3 semi(1.2, 0.3, 0.12), long_axis = turn(Vec3::UnitZ(), 0.03) * Vec3::UnitY();
+  FaceContacts last;
+  double neck_first = 0.0, neck_last = 0.0;
+  for (int k = 0; k <= 800; k++) {
+    const double angle = 0.5 * PI * k / 800;
+    // the rod's long axis along y (tilted a little), its width along x turning towards z
+    const Mat3 r = turn(long_axis, angle) * turn(Vec3::UnitZ(), 0.03) * turn(Vec3::UnitZ(), 0.5 * PI);
+    const Ellipsoid e = rod(Vec3(1.75, 0.0, 0.0), r, semi);
+    const FaceContacts found = wall_contacts(e, pipe);
+    ASSERT_EQ(found.count, 2) << angle;
+    // the middle's reach beyond the wall: the neck
+    const double middle = 1.75 + support(e.inverse_form, Vec3::UnitX()) - pipe.radius;
+    (k == 0 ? neck_first : neck_last) = middle;
+    if (k > 0)
+      for (int c = 0; c < 2; c++) {
+        EXPECT_LT(std::fabs(found.contact[c].overlap - last.contact[c].overlap), 1e-3) << angle;
+        EXPECT_LT((found.contact[c].normal - last.contact[c].normal).norm(), 1e-3) << angle;
+      }
+    last = found;
+  }
+  EXPECT_GT(neck_first, 0.02);    // one region at first
+  EXPECT_LT(neck_last, -0.05);    // two at the end
+}
+
+// the same rod centred in a bowl narrower than it (or a round-off away), every way round:
+// both tips, as deep
+TEST(WallShapes, SymmetricRodInABowlTouchesBothSides)
+{
+  WallSurface bowl;
+  bowl.shape = WallShape::Sphere;
+  bowl.center = Vec3(0.2, -0.1, 0.3);
+  bowl.radius = 2.9;
+  for (const double angle : {0.0, 0.4, 1.3, 2.9}) {
+    const Vec3 nudge = angle > 2.0 ? Vec3(3e-19, -1e-18, 2e-19)
+        : angle > 1.0              ? Vec3(1e-15, 2e-16, -1e-15)
+                                   : Vec3(0.0, 0.0, 0.0);
+    const Ellipsoid e =
+        rod(bowl.center + nudge, turn(Vec3(0.3, 1.0, -0.5), angle), Vec3(3.0, 0.5, 0.4));
+    const FaceContacts found = wall_contacts(e, bowl);
+    ASSERT_EQ(found.count, 2) << angle;
+    const ContactGeometry &a = found.contact[0], &b = found.contact[1];
+    EXPECT_EQ(a.status, Status::Overlapping);
+    EXPECT_NEAR(a.overlap, 0.1, 1e-12);
+    EXPECT_NEAR(b.overlap, 0.1, 1e-12);
+    EXPECT_NEAR((a.normal + b.normal).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((a.point_a - b.point_a).norm(), 6.0, 1e-12);
+  }
+}
+
+// the local maxima of the distance from a point over an ellipsoid's surface and the neck
+// between two of them against a grid of 100 x 200 angles: its local maxima refined by pattern
+// search (to 1e-10), and the neck by flooding the grid from the top (the value at which the
+// two maxima's regions join: to the grid's spacing)
+TEST(WallShapes, TwoMaximaAndTheirNeckAgainstBruteForce)
+{
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const LD pi = 3.141592653589793238462643383279502884L;
+  constexpr int NT = 100, NP = 200;
+  int pairs = 0;
+  for (int k = 0; k < 16; k++) {
+    RawEllipsoid r = random_ellipsoid(rng);
+    r.axes[1] = 0.1 + 0.5 * u(rng), r.axes[2] = 0.1 + 0.5 * u(rng);    // elongated
+    for (double &c : r.c) c = 0.0;
+    const Vec3 s = 0.35 * u(rng) * random_unit(rng);    // the bowl's centre
+    auto dist = [&](int i, int j) {
+      const V3L p = surface_point(r, pi * (i + 0.5) / NT, 2 * pi * j / NP);
+      return norm3(V3L{p[0] - s[0], p[1] - s[1], p[2] - s[2]});
+    };
+    std::vector<LD> d(NT * NP);
+    for (int i = 0; i < NT; i++)
+      for (int j = 0; j < NP; j++) d[i * NP + j] = dist(i, j);
+    auto neighbours = [&](int n) {
+      const int i = n / NP, j = n % NP;
+      std::vector<int> out;
+      for (int di = -1; di <= 1; di++)
+        for (int dj = -1; dj <= 1; dj++) {
+          if (di == 0 && dj == 0) continue;
+          const int ii = i + di;
+          if (ii < 0 || ii >= NT) continue;
+          out.push_back(ii * NP + (j + dj + NP) % NP);
+        }
+      return out;
+    };
+    // flooding: join cells from the highest down; two regions with a grid maximum each meet
+    std::vector<int> order(NT * NP), parent(NT * NP, -1);
+    for (int n = 0; n < NT * NP; n++) order[n] = n;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return d[a] > d[b]; });
+    std::function<int(int)> find = [&](int n) { return parent[n] == n ? n : parent[n] = find(parent[n]); };
+    // a region whose top rises less than 1e-4 above where it joins a higher one is the
+    // grid's, not a maximum
+    std::vector<LD> top(NT * NP, 0);
+    int regions = 1;
+    LD neck = -1;
+    for (int n : order) {
+      parent[n] = n;
+      top[n] = d[n];
+      std::vector<int> roots;
+      for (int m : neighbours(n))
+        if (parent[m] >= 0) roots.push_back(find(m));
+      std::sort(roots.begin(), roots.end());
+      roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+      if (roots.empty()) continue;
+      std::sort(roots.begin(), roots.end(), [&](int a, int b) { return top[a] > top[b]; });
+      for (std::size_t q = 1; q < roots.size(); q++)
+        if (top[roots[q]] - d[n] > 1e-4L && neck < 0) regions++, neck = d[n];
+      for (int root : roots) parent[root] = n;
+      top[n] = top[roots[0]];
+    }
+    // the kernel's maxima and neck (as a distance: radius 0)
+    ContactGeometry two[2];
+    double kernel_neck = 0.0;
+    const int count = sphere_inside_contacts(kernel_ellipsoid(r), s, 1e-300, two, kernel_neck);
+    ASSERT_EQ(count == 2, regions >= 2) << "case " << k;
+    if (count < 2) continue;
+    pairs++;
+    // each kernel maximum is a local maximum of the distance: no surface point nearby farther
+    for (const ContactGeometry &g : two) {
+      const LD depth = g.overlap;
+      const OracleResult o = deepest(r, [&](const V3L &p) {
+        const LD dx = p[0] - g.point_a[0], dy = p[1] - g.point_a[1], dz = p[2] - g.point_a[2];
+        if (dx * dx + dy * dy + dz * dz > 0.04L) return (LD) -1e300;
+        return norm3(V3L{p[0] - s[0], p[1] - s[1], p[2] - s[2]});
+      });
+      EXPECT_NEAR(static_cast<double>(o.depth), static_cast<double>(depth), 1e-10) << "case " << k;
+    }
+    EXPECT_GT((two[0].point_a - two[1].point_a).norm(), 0.2);
+    EXPECT_NEAR(kernel_neck, static_cast<double>(neck), 2e-3) << "case " << k;
+  }
+  EXPECT_GE(pairs, 6);
+}

@@ -136,7 +136,7 @@ def post_positions():
     return outside_positions("post")
 
 
-def build(style, region, positions, extra=""):
+def build(style, region, positions, extra="", laws=(OURS, LAMMPS)):
     lmp = new_lammps()
     lmp.commands_string(scenes.spheres_in_box(style, BOX, positions, RADIUS))
     rng = np.random.default_rng(3)
@@ -146,7 +146,7 @@ def build(style, region, positions, extra=""):
     lmp.commands_string(f"""
         {extra}
         {region}
-        fix w all {OURS if style == "ellipsoid" else LAMMPS} region r
+        fix w all {laws[0] if style == "ellipsoid" else laws[1]} region r
         fix i all {"nve/sphere" if style == "sphere" else "nve/ellipsoid"}
         timestep 1e-4
         """)
@@ -157,11 +157,11 @@ def per_atom(lmp, name):
     return np.array(lmp.numpy.extract_atom(name)[: lmp.get_natoms()], dtype=float).copy()
 
 
-def compare(region, positions, extra="", steps=(0, 20, 20, 20)):
+def compare(region, positions, extra="", steps=(0, 20, 20, 20), laws=(OURS, LAMMPS)):
     """Forces, torques and positions after each run of `steps` (run 0: the placed spheres);
     returns the largest number of spheres touching a wall at once."""
-    ours = build("ellipsoid", region, positions, extra)
-    ref = build("sphere", region, positions, extra)
+    ours = build("ellipsoid", region, positions, extra, laws)
+    ref = build("sphere", region, positions, extra, laws)
     try:
         touching, scale = 0, 0.0
         for n in steps:
