@@ -63,4 +63,13 @@ ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w)
   return degenerate;
 }
 
+bool wall_clear(const Ellipsoid &e, const WallSurface &w)
+{
+  const double clearance = wall_clearance(w, e.center);
+  if (clearance > e.bounding_radius) return true;
+  if (!(clearance > 0.0)) return false;    // the centre is beyond the surface
+  const ContactGeometry g = wall_contact(e, w);
+  return g.status == Status::Separated && g.overlap < 0.0;
+}
+
 }    // namespace EllipsoidDep

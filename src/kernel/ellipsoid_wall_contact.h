@@ -13,6 +13,10 @@
    - wall_clearance(w, x): the signed distance of point x from the surface, positive on the
      particle side. A particle whose bounding radius is below its centre's clearance cannot
      touch the wall.
+   - wall_clear(e, w): the particle lies on the particle side, apart from the surface (a
+     touching particle is not clear, as a pour's overlap test counts touching pairs). A new
+     particle must be clear of every wall (fix pour/ellipsoid); an iteration that stopped at
+     its cap proves nothing, so the particle is not clear.
 
    - R*: the particle's Gaussian radius at the contact and the wall's contact radius, LAMMPS's
      region convention (wall_effective_radius, ellipsoid_shape.h).
@@ -56,6 +60,7 @@ struct WallSurface {
 
 double wall_clearance(const WallSurface &w, const Vec3 &x);
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
+bool wall_clear(const Ellipsoid &e, const WallSurface &w);
 
 }    // namespace EllipsoidDep
 

@@ -340,6 +340,26 @@ def test_pour_checks_again_when_its_region_rises(tmp_path):
     assert log.index("Step") < warned.start()    # at a batch, not at the run start
 
 
+def test_pour_checks_the_time_step_against_the_walls(tmp_path):
+    """The particles to come are checked against each wall acting on them, as the doc says
+    (before: the walls were looked up by a style pattern that LAMMPS's matcher cannot read,
+    and none was found): a floor 100 times stiffer than the pair law has the shortest contact
+    time, and the report names it."""
+    lmp = h.new_lammps(tmp_path, "walls")
+    lmp.commands_list([
+        "units lj", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
+        "region box block 0 8 0 8 0 30", "create_box 1 box", "pair_style granular/ellipsoid",
+        "fix g all gravity 1.0 vector 0 0 -1", f"pair_coeff * * hertz {POUR_KN} 200",
+        f"fix w all wall/gran/ellipsoid hertz {100 * POUR_KN} 200 zplane 0 NULL",
+        "region ins block 0 8 0 8 20 29",
+        "fix p all pour/ellipsoid 100 1 4767 region ins size mean 0.5 delta_r 0.2 shape 1.4 1.4",
+        "timestep 1e-4", "run 0"])
+    log = h.read_log(lmp)
+    lmp.close()
+    assert re.search(r"^Fix pour/ellipsoid: Hertz contact time \S+ \(type 1 on fix w, impact "
+                     r"speed \S+\)", log, re.M), log
+
+
 @pytest.mark.parametrize("args,pattern", [
     ("10 1 5 region nope", r"region nope does not exist"),
     ("10 1 5", r"requires the keyword 'region ID'"),
