@@ -109,6 +109,7 @@ class FixPourEllipsoid : public Fix {
   // fix_pour_ellipsoid_options.cpp
   void options(int, char **);
   void check_region();
+  void read_region();
   std::vector<double> region_values() const;
   void recheck_region();
   void check_representable() const;

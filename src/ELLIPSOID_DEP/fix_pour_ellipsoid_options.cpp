@@ -190,13 +190,25 @@ void FixPourEllipsoid::options(int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   the region: a block or a z-axis cylinder, static, side in, inside the box; its lateral
-   sides as kernel wall surfaces (whole particles stay within them)
+   the region: a block or a z-axis cylinder, static, side in, inside the box (when the fix is
+   defined: a box shrunk later, as the default deposit's picture does, is no error)
 ------------------------------------------------------------------------- */
 
 void FixPourEllipsoid::check_region()
 {
   if (!region) error->all(FLERR, "Fix pour/ellipsoid requires the keyword 'region ID'");
+  read_region();
+  if (xlo < domain->boxlo[0] || xhi > domain->boxhi[0] || ylo < domain->boxlo[1] ||
+      yhi > domain->boxhi[1] || zlo < domain->boxlo[2] || zhi > domain->boxhi[2])
+    error->all(FLERR, "Fix pour/ellipsoid region {} extends outside the simulation box", idregion);
+  if (!(xhi > xlo && yhi > ylo && zhi > zlo))
+    error->all(FLERR, "Fix pour/ellipsoid region {} is empty", idregion);
+}
+
+// the region's style and extent, and its lateral sides as kernel wall surfaces (whole
+// particles stay within them)
+void FixPourEllipsoid::read_region()
+{
   if (region->bboxflag == 0)
     error->all(FLERR, "Fix pour/ellipsoid region {} does not support a bounding box", idregion);
   if (region->dynamic_check())
@@ -233,11 +245,6 @@ void FixPourEllipsoid::check_region()
   xc = 0.5 * (xlo + xhi);
   yc = 0.5 * (ylo + yhi);
   rc = 0.5 * (xhi - xlo);
-  if (xlo < domain->boxlo[0] || xhi > domain->boxhi[0] || ylo < domain->boxlo[1] ||
-      yhi > domain->boxhi[1] || zlo < domain->boxlo[2] || zhi > domain->boxhi[2])
-    error->all(FLERR, "Fix pour/ellipsoid region {} extends outside the simulation box", idregion);
-  if (!(xhi > xlo && yhi > ylo && zhi > zlo))
-    error->all(FLERR, "Fix pour/ellipsoid region {} is empty", idregion);
 
   region_sides.clear();
   if (region_style == 2) {
@@ -249,7 +256,7 @@ void FixPourEllipsoid::check_region()
     return;
   }
   // a block that spans a periodic box in x or y has no side there: particles cross the
-  // periodic boundary (the region lies inside the box, so spanning is equality)
+  // periodic boundary
   const double lo[2] = {xlo, ylo}, hi[2] = {xhi, yhi};
   for (int d = 0; d < 2; d++) {
     if (domain->periodicity[d] && lo[d] <= domain->boxlo[d] && hi[d] >= domain->boxhi[d]) continue;
@@ -279,7 +286,7 @@ void FixPourEllipsoid::recheck_region()
   region = domain->get_region_by_id(idregion);
   if (!region) error->all(FLERR, "Fix pour/ellipsoid region {} does not exist", idregion);
   const std::vector<double> before = region_values();
-  check_region();
+  read_region();
   const std::vector<double> now = region_values();
   if (now == before) return;
   error->all(FLERR,
