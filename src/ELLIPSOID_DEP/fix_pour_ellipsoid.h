@@ -57,7 +57,7 @@ class FixPourEllipsoid : public Fix {
   std::vector<EllipsoidDep::WallSurface> region_sides;
   // the walls acting on the poured particles (looked up at every run start): a particle is
   // inserted clear of them
-  std::vector<FixWallGranEllipsoid *> walls;
+  std::vector<const FixWallGranEllipsoid *> walls;
 
   // particles
   EllipsoidDep::PourDistribution distribution;
@@ -113,6 +113,9 @@ class FixPourEllipsoid : public Fix {
   std::vector<double> region_values() const;
   void recheck_region();
   void check_representable() const;
+  void find_walls();
+  bool inside_region(const EllipsoidDep::Ellipsoid &) const;
+  const FixWallGranEllipsoid *touched_wall(const EllipsoidDep::Ellipsoid &) const;
 
   // fix_pour_ellipsoid.cpp
   double region_volume() const;
@@ -120,9 +123,6 @@ class FixPourEllipsoid : public Fix {
 
   // fix_pour_ellipsoid_insert.cpp
   void find_maxid();
-  void find_walls();
-  bool inside_region(const EllipsoidDep::Ellipsoid &) const;
-  const FixWallGranEllipsoid *touched_wall(const EllipsoidDep::Ellipsoid &) const;
   std::vector<EllipsoidDep::Ellipsoid> gather_near_region(int reserve);
   EllipsoidDep::CellGrid near_cells(const std::vector<EllipsoidDep::Ellipsoid> &, int nnew) const;
   bool overlaps(const EllipsoidDep::Ellipsoid &, const std::vector<EllipsoidDep::Ellipsoid> &,

@@ -321,7 +321,8 @@ void FixPourEllipsoid::pre_exchange()
                    "touching a wall{}); they are tried again at the next batch",
                    batch_failed, nnew, update->ntimestep, maxattempt, MAX_HEIGHTS, batch_overlaps,
                    batch_side, idregion, batch_wall,
-                   walls_touched.empty() ? "" : " of fix " + utils::join_words(walls_touched, ", "));
+                   walls_touched.empty() ? ""
+                                         : " of fix " + utils::join_words(walls_touched, ", "));
 
   if (nsuccess) {
     atom->natoms += nsuccess;

@@ -248,7 +248,7 @@ void FixPourEllipsoid::read_region()
 
   region_sides.clear();
   if (region_style == 2) {
-    EllipsoidDep::WallSurface side;
+    WallSurface side;
     side.shape = EllipsoidDep::WallShape::Cylinder;
     side.center = EllipsoidDep::Vec3(xc, yc, 0.0);
     side.radius = rc;
@@ -260,7 +260,7 @@ void FixPourEllipsoid::read_region()
   const double lo[2] = {xlo, ylo}, hi[2] = {xhi, yhi};
   for (int d = 0; d < 2; d++) {
     if (domain->periodicity[d] && lo[d] <= domain->boxlo[d] && hi[d] >= domain->boxhi[d]) continue;
-    EllipsoidDep::WallSurface face;    // the particle side: lo <= x_d <= hi
+    WallSurface face;    // the particle side: lo <= x_d <= hi
     face.normal = EllipsoidDep::Vec3::Unit(d);
     face.offset = lo[d];
     region_sides.push_back(face);
@@ -326,7 +326,7 @@ void FixPourEllipsoid::find_walls()
 {
   walls.clear();
   for (auto *fix : modify->get_fix_list()) {
-    auto *wall = dynamic_cast<FixWallGranEllipsoid *>(fix);
+    const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
     if (wall && (fix->groupbit & (1 | groupbit))) walls.push_back(wall);
   }
 }

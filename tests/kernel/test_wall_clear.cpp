@@ -52,7 +52,10 @@ long double farthest_from_z_axis(const Ellipsoid &e)
   for (int it = 0; it < 200; it++) {    // golden section on the bracketing interval
     const long double a = hi - 0.618033988749894848L * (hi - lo);
     const long double b = lo + 0.618033988749894848L * (hi - lo);
-    if (reach(a) > reach(b)) hi = b; else lo = a;
+    if (reach(a) > reach(b))
+      hi = b;
+    else
+      lo = a;
   }
   return std::max(best, reach(0.5L * (lo + hi)));
 }
