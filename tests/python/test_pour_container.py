@@ -70,7 +70,7 @@ def test_needles_and_discs_stay_in_the_container(tmp_path):
     assert reach.max() <= 1.8 + TOL, reach.max()
     assert reach.max() > 1.2      # large particles near the side: the test has teeth
     assert touching_walls(lmp) == 0
-    lmp.command("run 20000")
+    lmp.command("run 10000")
     snap = h.snapshot(lmp, tmp_path, "landed")
     lmp.close()
     assert len(snap["id"]) == 17
