@@ -52,7 +52,7 @@ FixPourEllipsoid::FixPourEllipsoid(LAMMPS *lmp, int narg, char **arg) :
   scalar_flag = 1;
   extscalar = 0;
   vector_flag = 1;
-  size_vector = 3;
+  size_vector = 5;
   extvector = 0;
   global_freq = 1;
   time_depend = 1;
@@ -101,7 +101,7 @@ FixPourEllipsoid::FixPourEllipsoid(LAMMPS *lmp, int narg, char **arg) :
                idregion, region_volume(), sampler->mean_volume(), volfrac);
 
   contact_settings = ContactSettings();
-  ninserted = nfailed = nrejected = 0;
+  ninserted = nfailed = nrejected = nside = nwall = 0;
   maxtag_all = 0;
   initialized = 0;
   nfreq = 0;
@@ -145,8 +145,8 @@ double FixPourEllipsoid::region_volume() const
 void FixPourEllipsoid::init()
 {
   if (domain->triclinic) error->all(FLERR, "Cannot use fix pour/ellipsoid with a triclinic box");
-  region = domain->get_region_by_id(idregion);
-  if (!region) error->all(FLERR, "Fix pour/ellipsoid region {} does not exist", idregion);
+  recheck_region();
+  find_walls();
 
   // gravity: constant, along -z (its vector is set when the fix is created)
   auto fixlist = modify->get_fix_by_style("^gravity");
@@ -226,14 +226,9 @@ void FixPourEllipsoid::check_contact_times(bool run_start)
     times.add_contact(lmp, law, effective_radius(radius, radius), mass * mass / (mass + mass),
                       tangential_mass(mass, compliance, mass, compliance), speed,
                       fmt::format("types {} {}", ntype, ntype));
-  // one against every wall acting on the poured particles (their mask: all and this group)
-  // (LAMMPS's style patterns have no groups: the region wall is a FixWallGranEllipsoid too)
-  for (const auto *fix : modify->get_fix_by_style("^wall/gran/")) {
-    const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
-    if (wall && (fix->groupbit & (1 | groupbit)))
-      times.add_contact(lmp, wall->force_law(), radius, mass, tangential_mass(mass, compliance),
-                        speed, fmt::format("type {} on fix {}", ntype, fix->id));
-  }
+  for (const FixWallGranEllipsoid *wall : walls)
+    times.add_contact(lmp, wall->force_law(), radius, mass, tangential_mass(mass, compliance),
+                      speed, fmt::format("type {} on fix {}", ntype, wall->id));
   const bool shorter = times.contact_time < 0.9 * checked.contact_time ||
       times.damping_time < 0.9 * checked.damping_time;
   if (!run_start && !shorter && update->dt == checked.timestep) return;
@@ -294,9 +289,10 @@ void FixPourEllipsoid::post_run()
 {
   if (me == 0)
     utils::logmesg(lmp,
-                   "fix pour/ellipsoid {}: {} of {} particles inserted, {} insertions failed, "
-                   "{} overlapping trial positions rejected\n",
-                   id, ninserted, ninsert, nfailed, nrejected);
+                   "fix pour/ellipsoid {}: {} of {} particles inserted, {} insertions failed; "
+                   "trial positions rejected: {} overlapping particles, {} crossing the "
+                   "region's side, {} touching a wall\n",
+                   id, ninserted, ninsert, nfailed, nrejected, nside, nwall);
 }
 
 void FixPourEllipsoid::reset_dt()
@@ -309,12 +305,12 @@ double FixPourEllipsoid::compute_scalar()
   return static_cast<double>(ninserted);
 }
 
-// 1 inserted, 2 failed insertions, 3 rejected overlapping trial positions
+// 1 inserted, 2 failed insertions, trial positions rejected: 3 overlapping particles, 4
+// crossing the region's side, 5 touching a wall
 double FixPourEllipsoid::compute_vector(int n)
 {
-  if (n == 0) return static_cast<double>(ninserted);
-  if (n == 1) return static_cast<double>(nfailed);
-  return static_cast<double>(nrejected);
+  const bigint counts[5] = {ninserted, nfailed, nrejected, nside, nwall};
+  return static_cast<double>(counts[n]);
 }
 
 /* ----------------------------------------------------------------------

@@ -5,7 +5,8 @@
    sampler (ellipsoid_pour_sampler.h); insertion overlaps are rejected with the kernel's
    exact ellipsoid test. See doc/fix_pour_ellipsoid.rst.
    Files: fix_pour_ellipsoid.cpp (life cycle, schedule, restart, output),
-   fix_pour_ellipsoid_options.cpp (the command's arguments and region),
+   fix_pour_ellipsoid_options.cpp (the command's arguments, the region and the walls a new
+   particle must be clear of),
    fix_pour_ellipsoid_insert.cpp (inserting one batch).
 ------------------------------------------------------------------------- */
 
@@ -17,6 +18,7 @@
 #include "ellipsoid_cell_grid.h"
 #include "ellipsoid_contact.h"
 #include "ellipsoid_pour_sampler.h"
+#include "ellipsoid_wall_contact.h"
 #include "granular_contact_time.h"
 
 #include <memory>
@@ -24,6 +26,8 @@
 #include <vector>
 
 namespace LAMMPS_NS {
+
+class FixWallGranEllipsoid;
 
 class FixPourEllipsoid : public Fix {
  public:
@@ -48,6 +52,12 @@ class FixPourEllipsoid : public Fix {
   int region_style;    // 1 block, 2 z-cylinder
   double xlo, xhi, ylo, yhi, zlo, zhi;
   double xc, yc, rc;
+  // the region's lateral sides a whole particle stays within: a cylinder's side, a block's
+  // faces in x and y except where the block spans a periodic box (particles cross there)
+  std::vector<EllipsoidDep::WallSurface> region_sides;
+  // the walls acting on the poured particles (looked up at every run start): a particle is
+  // inserted clear of them
+  std::vector<const FixWallGranEllipsoid *> walls;
 
   // particles
   EllipsoidDep::PourDistribution distribution;
@@ -69,6 +79,7 @@ class FixPourEllipsoid : public Fix {
 
   // counters
   bigint ninserted, nfailed, nrejected;
+  bigint nside, nwall;    // trial positions whose particle crossed the region's side, a wall
   tagint maxtag_all;
 
   class RanPark *random;
@@ -93,11 +104,18 @@ class FixPourEllipsoid : public Fix {
     std::vector<double> values;
   };
   std::vector<Argument> arguments() const;
+  static std::string argument_words(const std::string &keyword, const std::vector<double> &values);
 
   // fix_pour_ellipsoid_options.cpp
   void options(int, char **);
   void check_region();
+  void read_region();
+  std::vector<double> region_values() const;
+  void recheck_region();
   void check_representable() const;
+  void find_walls();
+  bool inside_region(const EllipsoidDep::Ellipsoid &) const;
+  const FixWallGranEllipsoid *touched_wall(const EllipsoidDep::Ellipsoid &) const;
 
   // fix_pour_ellipsoid.cpp
   double region_volume() const;

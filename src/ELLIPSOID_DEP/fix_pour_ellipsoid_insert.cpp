@@ -3,8 +3,10 @@
 
    Per particle, in this order of random numbers (which restarts rely on): the height
    deviate, the size, the shape, then per trial position its x, y and orientation, then
-   the lateral velocity. A trial overlapping (or touching) any particle near the region or
-   of the same batch is rejected by the kernel's exact test. After maxattempt trials at one
+   the lateral velocity. A trial is rejected when the particle crosses a side of the region
+   (its exact extent: whole particles are inserted), touches or lies beyond a wall acting on
+   it, or overlaps (or touches) any particle near the region or of the same batch, each by the
+   kernel's exact test. After maxattempt trials at one
    height the particle draws another height of the stream (one more deviate), up to
    MAX_HEIGHTS heights; then it is a failed insertion. A pour in which every particle fits
    at its first height draws exactly the numbers of a pour that tries one height only.
@@ -17,6 +19,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_wall_gran_ellipsoid.h"
 #include "math_const.h"
 #include "modify.h"
 #include "random_park.h"
@@ -24,6 +27,7 @@
 
 #include "granular_ellipsoid_atoms.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -240,7 +244,8 @@ void FixPourEllipsoid::pre_exchange()
   std::vector<Ellipsoid> near = gather_near_region(nnew);
   CellGrid cells = near_cells(near, nnew);
   int nsuccess = 0;
-  bigint batch_failed = 0;
+  bigint batch_failed = 0, batch_overlaps = 0, batch_side = 0, batch_wall = 0;
+  std::vector<std::string> walls_touched;    // the walls that rejected trials of this batch
 
   for (int k = 0; k < nnew; k++) {
     const double rn = random->uniform();
@@ -262,11 +267,22 @@ void FixPourEllipsoid::pre_exchange()
         xyz_random(h, coord);
         sampler->orientation(quat);
         cand = make_particle(Vec3(coord[0], coord[1], coord[2]), quat, axes);
+        if (!inside_region(cand)) {
+          batch_side++;
+          continue;
+        }
+        if (const FixWallGranEllipsoid *wall = touched_wall(cand)) {
+          batch_wall++;
+          if (std::find(walls_touched.begin(), walls_touched.end(), wall->id) ==
+              walls_touched.end())
+            walls_touched.emplace_back(wall->id);
+          continue;
+        }
         if (!overlaps(cand, near, cells)) {
           success = true;
           break;
         }
-        nrejected++;
+        batch_overlaps++;
       }
     }
     if (!success) {
@@ -293,11 +309,20 @@ void FixPourEllipsoid::pre_exchange()
 
   ninserted += nsuccess;
   nfailed += batch_failed;
+  nrejected += batch_overlaps;
+  nside += batch_side;
+  nwall += batch_wall;
+  // what could not be inserted, and why: the particles wait for the next batch
   if (batch_failed && me == 0)
     error->warning(FLERR,
                    "Fix pour/ellipsoid: {} of {} insertions failed at step {} (no free "
-                   "place in {} attempts)",
-                   batch_failed, nnew, update->ntimestep, maxattempt);
+                   "place in {} attempts at each of up to {} heights; the batch's rejected trial "
+                   "positions: {} overlapping particles, {} crossing region {}'s side, {} "
+                   "touching a wall{}); they are tried again at the next batch",
+                   batch_failed, nnew, update->ntimestep, maxattempt, MAX_HEIGHTS, batch_overlaps,
+                   batch_side, idregion, batch_wall,
+                   walls_touched.empty() ? ""
+                                         : " of fix " + utils::join_words(walls_touched, ", "));
 
   if (nsuccess) {
     atom->natoms += nsuccess;

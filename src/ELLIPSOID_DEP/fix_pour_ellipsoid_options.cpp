@@ -1,6 +1,6 @@
 /* ----------------------------------------------------------------------
-   ELLIPSOID_DEP: fix pour/ellipsoid, the command's arguments and its region
-   (see fix_pour_ellipsoid.h)
+   ELLIPSOID_DEP: fix pour/ellipsoid, the command's arguments, its region and the walls a new
+   particle must be clear of (see fix_pour_ellipsoid.h)
 ------------------------------------------------------------------------- */
 
 #include "fix_pour_ellipsoid.h"
@@ -8,13 +8,17 @@
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_wall_gran_ellipsoid.h"
 #include "math_const.h"
+#include "modify.h"
 #include "region.h"
 
 #include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
+using EllipsoidDep::Ellipsoid;
+using EllipsoidDep::WallSurface;
 using MathConst::MY_4PI3;
 
 /* ----------------------------------------------------------------------
@@ -186,12 +190,25 @@ void FixPourEllipsoid::options(int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   the region: a block or a z-axis cylinder, static, side in, inside the box
+   the region: a block or a z-axis cylinder, static, side in, inside the box (when the fix is
+   defined: a box shrunk later, as the default deposit's picture does, is no error)
 ------------------------------------------------------------------------- */
 
 void FixPourEllipsoid::check_region()
 {
   if (!region) error->all(FLERR, "Fix pour/ellipsoid requires the keyword 'region ID'");
+  read_region();
+  if (xlo < domain->boxlo[0] || xhi > domain->boxhi[0] || ylo < domain->boxlo[1] ||
+      yhi > domain->boxhi[1] || zlo < domain->boxlo[2] || zhi > domain->boxhi[2])
+    error->all(FLERR, "Fix pour/ellipsoid region {} extends outside the simulation box", idregion);
+  if (!(xhi > xlo && yhi > ylo && zhi > zlo))
+    error->all(FLERR, "Fix pour/ellipsoid region {} is empty", idregion);
+}
+
+// the region's style and extent, and its lateral sides as kernel wall surfaces (whole
+// particles stay within them)
+void FixPourEllipsoid::read_region()
+{
   if (region->bboxflag == 0)
     error->all(FLERR, "Fix pour/ellipsoid region {} does not support a bounding box", idregion);
   if (region->dynamic_check())
@@ -228,11 +245,54 @@ void FixPourEllipsoid::check_region()
   xc = 0.5 * (xlo + xhi);
   yc = 0.5 * (ylo + yhi);
   rc = 0.5 * (xhi - xlo);
-  if (xlo < domain->boxlo[0] || xhi > domain->boxhi[0] || ylo < domain->boxlo[1] ||
-      yhi > domain->boxhi[1] || zlo < domain->boxlo[2] || zhi > domain->boxhi[2])
-    error->all(FLERR, "Fix pour/ellipsoid region {} extends outside the simulation box", idregion);
-  if (!(xhi > xlo && yhi > ylo && zhi > zlo))
-    error->all(FLERR, "Fix pour/ellipsoid region {} is empty", idregion);
+
+  region_sides.clear();
+  if (region_style == 2) {
+    WallSurface side;
+    side.shape = EllipsoidDep::WallShape::Cylinder;
+    side.center = EllipsoidDep::Vec3(xc, yc, 0.0);
+    side.radius = rc;
+    region_sides.push_back(side);
+    return;
+  }
+  // a block that spans a periodic box in x or y has no side there: particles cross the
+  // periodic boundary
+  const double lo[2] = {xlo, ylo}, hi[2] = {xhi, yhi};
+  for (int d = 0; d < 2; d++) {
+    if (domain->periodicity[d] && lo[d] <= domain->boxlo[d] && hi[d] >= domain->boxhi[d]) continue;
+    WallSurface face;    // the particle side: lo <= x_d <= hi
+    face.normal = EllipsoidDep::Vec3::Unit(d);
+    face.offset = lo[d];
+    region_sides.push_back(face);
+    face.normal = -EllipsoidDep::Vec3::Unit(d);
+    face.offset = -hi[d];
+    region_sides.push_back(face);
+  }
+}
+
+// the region as the pour uses it: style (1 block, 2 cylinder) and extent
+std::vector<double> FixPourEllipsoid::region_values() const
+{
+  return {double(region_style), xlo, xhi, ylo, yhi, zlo, zhi};
+}
+
+/* ----------------------------------------------------------------------
+   at every run start, the region found by its ID again: one deleted and defined again with
+   another style or extent would be poured into with the old one's numbers and schedule
+------------------------------------------------------------------------- */
+
+void FixPourEllipsoid::recheck_region()
+{
+  region = domain->get_region_by_id(idregion);
+  if (!region) error->all(FLERR, "Fix pour/ellipsoid region {} does not exist", idregion);
+  const std::vector<double> before = region_values();
+  read_region();
+  const std::vector<double> now = region_values();
+  if (now == before) return;
+  error->all(FLERR,
+             "Fix pour/ellipsoid {}: region {} changed since the fix was defined (was {}, now "
+             "{}: style and extent); define the pour again with a new fix ID",
+             id, idregion, argument_words("region", before), argument_words("region", now));
 }
 
 /* ----------------------------------------------------------------------
@@ -254,4 +314,39 @@ void FixPourEllipsoid::check_representable() const
                "Fix pour/ellipsoid size and density give masses or moments of inertia "
                "that are not representable (rmin {} rmax {} density {}); use other units",
                rmin, rmax, density);
+}
+
+/* ----------------------------------------------------------------------
+   the walls a new particle must be clear of: the region's sides and the walls acting on it
+------------------------------------------------------------------------- */
+
+// the walls acting on the poured particles (their mask: all and this group), of both wall
+// styles (by type: LAMMPS's style patterns have no groups, so "(region/)?" matches nothing)
+void FixPourEllipsoid::find_walls()
+{
+  walls.clear();
+  for (auto *fix : modify->get_fix_list()) {
+    const auto *wall = dynamic_cast<const FixWallGranEllipsoid *>(fix);
+    if (wall && (fix->groupbit & (1 | groupbit))) walls.push_back(wall);
+  }
+}
+
+// does the whole particle lie within the region's lateral sides? (its bounding sphere lies
+// within the region's z range by its height)
+bool FixPourEllipsoid::inside_region(const Ellipsoid &cand) const
+{
+  for (const WallSurface &side : region_sides)
+    if (!wall_clear(cand, side)) return false;
+  return true;
+}
+
+// the first wall acting on the poured particles that the candidate touches or lies beyond,
+// where the last step placed it (moving walls move on by one step's travel at most before
+// they act); null when it is clear of all
+const FixWallGranEllipsoid *FixPourEllipsoid::touched_wall(const Ellipsoid &cand) const
+{
+  for (const FixWallGranEllipsoid *wall : walls)
+    for (const WallSurface &w : wall->surfaces())
+      if (!wall_clear(cand, w)) return wall;
+  return nullptr;
 }

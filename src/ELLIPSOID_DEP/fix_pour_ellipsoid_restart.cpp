@@ -24,8 +24,10 @@ using namespace EllipsoidDep;
 ------------------------------------------------------------------------- */
 
 // first value of a record that holds the arguments (records before 2 Dec 2026 start with
-// the generator's state, which is > 0)
+// the generator's state, which is > 0), and of one that also holds, after them, the counts
+// of trial positions rejected at the region's side and at walls (older: 0)
 static constexpr double RESTART_WITH_ARGUMENTS = -2.0;
+static constexpr double RESTART_WITH_SIDE_COUNTS = -3.0;
 
 std::vector<FixPourEllipsoid::Argument> FixPourEllipsoid::arguments() const
 {
@@ -44,11 +46,12 @@ std::vector<FixPourEllipsoid::Argument> FixPourEllipsoid::arguments() const
           {"vel", {vxlo, vxhi, vylo, vyhi, vz}},
           {"release", {cloud ? 1.0 : 0.0}},
           {"every", {double(every)}},
-          {"region", {double(region_style), xlo, xhi, ylo, yhi, zlo, zhi}}};
+          {"region", region_values()}};
 }
 
 // an argument's values as the command gives them
-static std::string argument_words(const std::string &keyword, const std::vector<double> &values)
+std::string FixPourEllipsoid::argument_words(const std::string &keyword,
+                                             const std::vector<double> &values)
 {
   if (keyword == "release") return values[0] != 0.0 ? "cloud" : "stream";
   std::string words;
@@ -65,7 +68,7 @@ static std::string argument_words(const std::string &keyword, const std::vector<
 void FixPourEllipsoid::write_restart(FILE *fp)
 {
   std::vector<double> list;
-  list.push_back(RESTART_WITH_ARGUMENTS);
+  list.push_back(RESTART_WITH_SIDE_COUNTS);
   list.push_back(random->state());
   list.push_back(ubuf(ninserted).d);
   list.push_back(ubuf(nfailed).d);
@@ -79,6 +82,8 @@ void FixPourEllipsoid::write_restart(FILE *fp)
   list.push_back(initialized);
   for (const Argument &argument : arguments())
     list.insert(list.end(), argument.values.begin(), argument.values.end());
+  list.push_back(ubuf(nside).d);
+  list.push_back(ubuf(nwall).d);
   if (comm->me == 0) {
     const int size = static_cast<int>(list.size() * sizeof(double));
     fwrite(&size, sizeof(int), 1, fp);
@@ -90,7 +95,8 @@ void FixPourEllipsoid::restart(char *buf)
 {
   auto *list = (double *) buf;
   int n = 0;
-  const bool with_arguments = list[0] == RESTART_WITH_ARGUMENTS;
+  const bool with_side_counts = list[0] == RESTART_WITH_SIDE_COUNTS;
+  const bool with_arguments = with_side_counts || list[0] == RESTART_WITH_ARGUMENTS;
   if (with_arguments) n++;
   const int state = static_cast<int>(list[n++]);
   ninserted = ubuf(list[n++]).i;
@@ -117,6 +123,8 @@ void FixPourEllipsoid::restart(char *buf)
   } else {    // an older record holds N only
     written.push_back({"N", {list[n++]}});
   }
+  nside = with_side_counts ? ubuf(list[n++]).i : 0;
+  nwall = with_side_counts ? ubuf(list[n++]).i : 0;
   const std::vector<Argument> given = arguments();
   for (const Argument &old : written) {
     const Argument &now = *std::find_if(given.begin(), given.end(), [&](const Argument &a) {

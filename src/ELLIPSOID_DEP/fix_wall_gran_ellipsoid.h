@@ -48,6 +48,8 @@ class FixWallGranEllipsoid : public Fix {
 
   // the walls' law (fix pour/ellipsoid checks the time step of its particles against it)
   const EllipsoidDep::ForceLaw &force_law() const { return law; }
+  // the walls where the last step placed them (fix pour/ellipsoid inserts clear of them)
+  const std::vector<EllipsoidDep::WallSurface> &surfaces() const { return walls; }
 
  protected:
   // region_style: the words of fix wall/gran/region/ellipsoid (region ID, no planes, no

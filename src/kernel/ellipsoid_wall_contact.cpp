@@ -203,4 +203,13 @@ void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck)
   lower(other, neck);
 }
 
+bool wall_clear(const Ellipsoid &e, const WallSurface &w)
+{
+  const double clearance = wall_clearance(w, e.center);
+  if (clearance > e.bounding_radius) return true;
+  if (!(clearance > 0.0)) return false;    // the centre is beyond the surface
+  const ContactGeometry g = wall_contact(e, w);
+  return g.status == Status::Separated && g.overlap < 0.0;
+}
+
 }    // namespace EllipsoidDep

@@ -14,6 +14,10 @@
      particle side (a centre past an end of a finite side: its distance from that end's
      rim). A particle whose bounding radius is below its centre's clearance cannot touch the
      wall.
+   - wall_clear(e, w): the particle lies on the particle side, apart from the surface (a
+     touching particle is not clear, as a pour's overlap test counts touching pairs). A new
+     particle must be clear of every wall (fix pour/ellipsoid); an iteration that stopped at
+     its cap proves nothing, so the particle is not clear.
 
    - R*: the particle's Gaussian radius at the contact and the wall's contact radius, LAMMPS's
      region convention (wall_effective_radius, ellipsoid_shape.h).
@@ -81,6 +85,8 @@ FaceContacts wall_contacts(const Ellipsoid &e, const WallSurface &w);
 // both keep their depths. So a contact region that splits in two, a second maximum that
 // appears or vanishes, or two maxima that swap order change the overlaps continuously.
 void share_neck(ContactGeometry &deeper, ContactGeometry &other, double neck);
+
+bool wall_clear(const Ellipsoid &e, const WallSurface &w);
 
 }    // namespace EllipsoidDep
 

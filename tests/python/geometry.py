@@ -91,6 +91,31 @@ def lowest_z(q, semi, z):
     return z - half_height(q, semi)
 
 
+def half_width(q, semi, axis):
+    """Half the ellipsoid's extent along coordinate axis (0 x, 1 y, 2 z): sqrt(M_kk)."""
+    return math.sqrt(shape_matrix(q, semi)[axis, axis])
+
+
+def farthest_from_z_axis(q, semi, centre, axis_xy):
+    """The largest distance of the ellipsoid's points from the vertical line through axis_xy:
+    its shadow on the xy plane is the ellipse of the shape matrix's xy block, whose farthest
+    point from p lies at max over unit u of sqrt(u^T M_xy u) + u.(c - p) (support function);
+    the angle sampled densely, then refined."""
+    m = shape_matrix(q, semi)[:2, :2]
+    d = np.asarray(centre, dtype=float)[:2] - np.asarray(axis_xy, dtype=float)
+
+    def reach(angle):
+        u = np.array([math.cos(angle), math.sin(angle)])
+        return math.sqrt(u @ m @ u) + u @ d
+
+    angles = np.linspace(0.0, 2.0 * math.pi, 3601)
+    best = angles[int(np.argmax([reach(a) for a in angles]))]
+    step = angles[1] - angles[0]
+    found = optimize.minimize_scalar(lambda a: -reach(a), bounds=(best - step, best + step),
+                                     method="bounded", options={"xatol": 1e-13})
+    return max(reach(best), -found.fun)
+
+
 # ------------------------------------------------------------------------------------------
 # two ellipsoids
 

@@ -325,24 +325,6 @@ def test_pour_into_an_empty_box_checks_the_time_step(tmp_path):
     assert POUR_LINE.search(safe) and "WARNING" not in safe, safe
 
 
-def test_pour_checks_its_particles_against_the_walls(tmp_path):
-    """A floor 20 times stiffer than the pair: the lightest particle's contact with it is the
-    shortest, and the pour's report names the wall (its style pattern once matched no wall)."""
-    stiff = h.new_lammps(tmp_path, "stiff")
-    stiff.commands_list([
-        "units lj", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
-        "region box block 0 8 0 8 0 100", "create_box 1 box", "pair_style granular/ellipsoid",
-        "fix g all gravity 1.0 vector 0 0 -1", f"pair_coeff * * hertz {POUR_KN} 200",
-        f"fix w all wall/gran/region/ellipsoid hertz {20 * POUR_KN} 200 region box",
-        "region ins block 0 8 0 8 20 29",
-        "fix p all pour/ellipsoid 100 1 4767 region ins size mean 0.5 delta_r 0.2 shape 1.4 1.4 "
-        "vol 0.15 200 vel 0 0 0 0 -60", "timestep 1.0e-5", "run 0"])
-    log = h.read_log(stiff)
-    stiff.close()
-    assert re.search(r"^Fix pour/ellipsoid: Hertz contact time \S+ \(type 1 on fix w, impact "
-                     r"speed \S+\)", log, re.M), log
-
-
 def test_pour_checks_again_when_its_region_rises(tmp_path):
     """A region rising at 43 per time unit drops later batches from higher up: the check at
     run start passes (top 4: impact speed 2.83, 11.1 steps per contact) and one at a later
@@ -356,6 +338,26 @@ def test_pour_checks_again_when_its_region_rises(tmp_path):
     warned = POUR_WARNING.search(log)
     assert warned and float(warned.group(3)) > 1.5 * float(first.group(2)), log
     assert log.index("Step") < warned.start()    # at a batch, not at the run start
+
+
+def test_pour_checks_the_time_step_against_the_walls(tmp_path):
+    """The particles to come are checked against each wall acting on them, as the doc says
+    (before: the walls were looked up by a style pattern that LAMMPS's matcher cannot read,
+    and none was found): a floor 100 times stiffer than the pair law has the shortest contact
+    time, and the report names it."""
+    lmp = h.new_lammps(tmp_path, "walls")
+    lmp.commands_list([
+        "units lj", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
+        "region box block 0 8 0 8 0 30", "create_box 1 box", "pair_style granular/ellipsoid",
+        "fix g all gravity 1.0 vector 0 0 -1", f"pair_coeff * * hertz {POUR_KN} 200",
+        f"fix w all wall/gran/ellipsoid hertz {100 * POUR_KN} 200 zplane 0 NULL",
+        "region ins block 0 8 0 8 20 29",
+        "fix p all pour/ellipsoid 100 1 4767 region ins size mean 0.5 delta_r 0.2 shape 1.4 1.4",
+        "timestep 1e-4", "run 0"])
+    log = h.read_log(lmp)
+    lmp.close()
+    assert re.search(r"^Fix pour/ellipsoid: Hertz contact time \S+ \(type 1 on fix w, impact "
+                     r"speed \S+\)", log, re.M), log
 
 
 @pytest.mark.parametrize("args,pattern", [
@@ -418,3 +420,45 @@ def test_superellipsoid_variant(tmp_path):
     assert np.allclose(radius[order], snap["semi"].max(axis=1), rtol=1e-13)
     assert np.allclose(snap["mass"], 1000 * 4 / 3 * math.pi * np.prod(snap["semi"], axis=1),
                        rtol=1e-13)
+
+
+# one pour in SI and in units metal and real: metres per length unit, seconds per time unit,
+# m/s^2 per force/mass unit (LAMMPS's doc/src/units.rst)
+UNIT_STYLES = {"si": (1.0, 1.0, 1.0),
+               "metal": (1e-10, 1e-12, 1.602176634e-19 / 1e-10 / (1e-3 / 6.02214076e23)),
+               "real": (1e-10, 1e-15, 4184.0 / 1e-10 / 1e-3)}
+
+
+@pytest.mark.parametrize("style", ["metal", "real"])
+def test_pour_schedule_and_velocities_in_every_unit_style(tmp_path, style):
+    """The same physical pour (a 5 cm high region at 5-10 cm, g 9.81 m/s^2, dt 10 us) in SI
+    and in another unit style: the same batch interval in steps and the same particles with the
+    same velocities (gravity converted to velocity/time with force->ftm2v, as fix pour does)."""
+    def pour(units):
+        length, time, accel = UNIT_STYLES[units]
+        box = " ".join(f"{v / length:.17g}" for v in (0, 0.1, 0, 0.1, 0, 0.1))
+        lmp = h.new_lammps(tmp_path, units)
+        lmp.commands_list([
+            f"units {units}", "atom_style ellipsoid", "boundary p p f", "comm_modify vel yes",
+            f"region box block {box}", "create_box 1 box",
+            f"region ins block 0 {0.1 / length:.17g} 0 {0.1 / length:.17g} {0.05 / length:.17g} "
+            f"{0.1 / length:.17g}",
+            f"fix p all pour/ellipsoid 20 1 17 region ins size {0.004 / length:.17g} "
+            f"{0.006 / length:.17g} shape 1.4 1.2 vol 0.05 50 vel 0 0 0 0 {-0.5 * time / length:.17g}",
+            f"fix g all gravity {9.81 / accel:.17g} vector 0 0 -1", f"timestep {1e-5 / time:.17g}",
+            "run 1"])
+        snap = h.snapshot(lmp, tmp_path, units)
+        log = h.read_log(lmp)
+        lmp.close()
+        every = re.search(r"fix pour/ellipsoid: \d+ particles every (\d+) steps", log)
+        return int(every.group(1)), snap["x3"] * length, snap["v3"] * length / time
+
+    every_si, x_si, v_si = pour("si")
+    every, x, v = pour(style)
+    assert every == every_si
+    assert len(x) == len(x_si) == 20
+    # to 1e-7: LAMMPS's force->ftm2v of metal has 8 digits (1 / 1.0364269e-4), and the
+    # stream's heights depend on g
+    assert np.abs(x - x_si).max() < 1e-7 * 0.1
+    assert np.allclose(v, v_si, rtol=1e-7, atol=0)
+    assert v[:, 2].max() < -0.5    # at least the entry speed downwards, in m/s
