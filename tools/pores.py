@@ -41,13 +41,16 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_packing  # noqa: E402
 from pore_surface import slab_fraction, slab_surface  # noqa: E402
-from pore_voxels import Grid, analyse_voxels, periodic_labels, voxelize  # noqa: E402
+from pore_voxels import (Grid, analyse_voxels, check_memory, periodic_labels,  # noqa: E402
+                         voxelize)
 from study_stats import Pooled  # noqa: E402
 
 VOXEL_FRACTION = 0.125    # default voxel size: this fraction of the smallest semi-axis
 MAX_VOXEL_FRACTION = 0.5  # larger voxels cannot resolve the thinnest particle dimension
 FLOW_VOXEL_FRACTION = 0.25    # default voxel of the flow solve (doc/howto_pores.md)
 MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thinnest particle
+# the flow's voxel image and its labels, before OpenFOAM's mesh (a lower bound of its memory)
+FLOW_IMAGE_BYTES = 16
 KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
 
 
@@ -74,9 +77,18 @@ class Particles:
     def __init__(self, centres, quats, semi):
         self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
         self.semi = np.asarray(semi, dtype=float).reshape(-1, 3)
-        self.rotations = rotation_matrices(np.asarray(quats, dtype=float).reshape(-1, 4))
+        quats = np.asarray(quats, dtype=float).reshape(-1, 4)
+        if not len(self.centres):
+            raise ValueError("no particles")
         if not (np.all(np.isfinite(self.centres)) and np.all(self.semi > 0)):
             raise ValueError("particles need finite centres and positive semi-axes")
+        norms = np.linalg.norm(quats, axis=1)
+        bad = np.flatnonzero(~(np.isfinite(norms) & (norms > 0)))
+        if bad.size:
+            raise ValueError("%d particles have no orientation (zero quaternion), the first "
+                             "in row %d: %s" % (bad.size, bad[0] + 1,
+                                                " ".join("%g" % q for q in quats[bad[0]])))
+        self.rotations = rotation_matrices(quats)
         # M = R diag(s^2) R^T and Q = M^-1
         self.inverse_form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** 2,
                                       self.rotations)
@@ -109,13 +121,28 @@ def read_dump(path):
     if not starts:
         raise ValueError("%s: not a LAMMPS dump" % path)
     frame = lines[starts[-1]:]
-    n = int(frame[3])
-    box = np.array([[float(v) for v in frame[5 + k].split()[:2]] for k in range(3)])
-    header = frame[8].split()
-    if header[:2] != ["ITEM:", "ATOMS"]:
-        raise ValueError("%s: unexpected dump layout" % path)
+    header = frame[8].split() if len(frame) > 8 else []
+    if header[:2] != ["ITEM:", "ATOMS"] or not frame[2].startswith("ITEM: NUMBER OF ATOMS") \
+            or not frame[4].startswith("ITEM: BOX BOUNDS"):
+        raise ValueError("%s: unexpected dump layout or a truncated last frame (line %d)"
+                         % (path, starts[-1] + 1))
+    try:
+        n = int(frame[3])
+        box = np.array([[float(v) for v in frame[5 + k].split()[:2]] for k in range(3)])
+    except ValueError:
+        raise ValueError("%s: unreadable atom count or box in the last frame" % path) from None
+    if n <= 0:
+        raise ValueError("%s: no atoms in the last frame" % path)
     columns = header[2:]
-    data = np.array([row.split() for row in frame[9:9 + n]], dtype=float).reshape(n, -1)
+    rows = [row.split() for row in frame[9:9 + n]]
+    short = [k for k, row in enumerate(rows) if len(row) != len(columns)]
+    if len(rows) < n or short:
+        raise ValueError("%s: truncated dump: the last frame holds %d complete atom rows of %d"
+                         % (path, short[0] if short else len(rows), n))
+    try:
+        data = np.array(rows, dtype=float)
+    except ValueError:
+        raise ValueError("%s: a non-numeric value in the atom rows" % path) from None
 
     def cols(names):
         missing = [c for c in names if c not in columns]
@@ -125,6 +152,21 @@ def read_dump(path):
 
     return (Particles(cols(["x", "y", "z"]), cols(["quatw", "quati", "quatj", "quatk"]),
                       cols(["semi_a_x", "semi_a_y", "semi_a_z"])), box)
+
+
+def read_slab(run_dir):
+    """packing.dat of a finished deposit's run folder, with its slab zlo < zhi"""
+    path = os.path.join(run_dir, "packing.dat")
+    pk = read_packing(path)
+    missing = [k for k in ("zlo", "zhi") if not isinstance(pk.get(k), float)]
+    if missing:
+        raise ValueError("%s: no %s (not the packing.dat of a finished deposit)"
+                         % (path, " or ".join(missing)))
+    if not pk["zhi"] > pk["zlo"] or pk.get("slab_ok", 1) == 0:
+        raise ValueError("%s: %s slab (zlo %g, zhi %g): the deposit is too shallow for its "
+                         "measuring slab" % (path, "empty" if not pk["zhi"] > pk["zlo"]
+                                             else "too thin a", pk["zlo"], pk["zhi"]))
+    return pk
 
 
 # ---------------------------------------------------------------------------------------------
@@ -149,6 +191,9 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None, voxel_fraction=
     v_slab = area_xy * (zhi - zlo)
     v_solid = float((slab_fraction(particles, zlo, zhi) * particles.volumes).sum())
     porosity = 1.0 - v_solid / v_slab
+    if porosity < 0:
+        raise ValueError("the particles' volume in the slab exceeds the slab's (porosity %.4g): "
+                         "they overlap, this is not a deposit" % porosity)
     surface, quad_change, ncut = slab_surface(particles, zlo, zhi)
     s_v = surface / v_slab
     progress("exact: porosity %.5f, specific surface %.5g" % (porosity, s_v))
@@ -195,7 +240,6 @@ def flow_permeability(particles, box, zlo, zhi, voxel=None, progress=None, workd
     """k_xx, k_yy, k_zz of the slab from the Stokes-flow solve (tools/pore_flow.py) on a voxel
     image of the slab alone, in units of d^2 (d: the mean volume-equivalent diameter)"""
     import pore_flow
-    pore_flow.require_openfoam()
     progress = progress or Progress(quiet=True)
     smallest = float(particles.semi.min())
     voxel = FLOW_VOXEL_FRACTION * smallest if voxel is None else voxel
@@ -203,6 +247,8 @@ def flow_permeability(particles, box, zlo, zhi, voxel=None, progress=None, workd
         raise ValueError("flow voxel %.4g: needs 0 < voxel <= %g x the smallest semi-axis (%.4g)"
                          % (voxel, MAX_FLOW_VOXEL_FRACTION, MAX_FLOW_VOXEL_FRACTION * smallest))
     grid = Grid(box, zlo, zhi, voxel, margin=0.0)
+    check_memory(grid, voxel, FLOW_IMAGE_BYTES, "--flow-voxel")
+    pore_flow.require_openfoam()
     solid = voxelize(particles, grid, progress)[:, :, grid.slab]
     labels, _ = periodic_labels(~solid)
     spanning = np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
@@ -309,7 +355,7 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
         if not os.path.isfile(os.path.join(run_dir, name)):
             raise ValueError("%s: no %s (not a finished deposit's run folder)" % (run_dir, name))
     particles, box = read_dump(os.path.join(run_dir, "deposit.dump"))
-    pk = read_packing(os.path.join(run_dir, "packing.dat"))
+    pk = read_slab(run_dir)
     progress("%d particles, slab z in [%g, %g]" % (len(particles), pk["zlo"], pk["zhi"]))
     # the flow first: its bad input (no pore path, a voxel too large) ends the run early
     k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"], flow_voxel, progress)
@@ -363,7 +409,9 @@ def compare(run_dirs, out_png, voxel=None, quiet=False):
                 res = json.load(f)
         else:
             res = run_folder(d, voxel=voxel, quiet=quiet, picture=False)
-        pk = read_packing(os.path.join(d, "packing.dat"))
+        pk = read_slab(d)
+        if not all(isinstance(pk.get(k), float) for k in ("eta", "zeta")):
+            raise ValueError("%s/packing.dat: no eta or zeta" % d)
         by_shape.setdefault((pk["eta"], pk["zeta"]), []).append(res)
     fig, axes = plt.subplots(1, len(COMPARED), figsize=(4.2 * len(COMPARED), 3.6))
     table = []
@@ -420,8 +468,12 @@ def main(argv=None):
     import pore_flow
     try:
         report(ap, args)
-    except (ValueError, OSError, pore_flow.FlowError) as e:
+    except (ValueError, RuntimeError, OSError, pore_flow.FlowError) as e:
         print("pores: ERROR: %s" % e, file=sys.stderr)
+        sys.exit(2)
+    except MemoryError:
+        print("pores: ERROR: out of memory; give a larger --voxel or --flow-voxel",
+              file=sys.stderr)
         sys.exit(2)
 
 
