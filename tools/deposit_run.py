@@ -3,7 +3,7 @@
 
     ./ellipsoid-dep run [--N 1000] [--np 2] [--out DIR] [--eta 1.4 --zeta 1.8 --dr 0.6]
                         [--seed S] [--ketol 1e-3] [--checkpoint-every 5000] [--no-image]
-                        [--normal "hertz/material glass"] [--input FILE] [--quiet]
+                        [--normal "hertz/material E nu e"] [--input FILE] [--quiet]
     ./ellipsoid-dep run --resume DIR          # continue an interrupted run from its checkpoint
 
 Runs `mpirun -np NP $LAMMPS_BUILD/lmp -in in.deposit -var ...` in the run folder
@@ -66,8 +66,10 @@ def lammps_command(settings, out, resume_from=None, log_name="log.lammps"):
                  "dr": settings["dr"], "seed": settings["seed"], "ketol": settings["ketol"],
                  "out": out, "image": 1 if settings["image"] else 0,
                  "tangential": settings["tangential"],
-                 "normal": normal_words(settings)[0], "material": normal_words(settings)[1],
                  "checkpoint": settings["checkpoint_every"]}
+    normal, material = normal_words(settings)
+    if normal != "hertz":    # the default law's words stay in.deposit's (kn and K)
+        variables.update(normal=normal, material=material)
     variables.update(settings["vars"])
     if resume_from:
         variables["resume"] = resume_from
@@ -218,8 +220,9 @@ def parse_args(argv):
                          'viscous law: "viscous 0.5")')
     ap.add_argument("--normal",
                     help='normal law words (default "hertz", its kn and K by --var kn/K; or '
-                         '"hertz/material NAME" with a material of '
-                         'potentials/ellipsoid_dep.materials, or "hertz/material E nu e")')
+                         '"hertz/material E nu e" in LJ units, e.g. "hertz/material 3e4 0.3 '
+                         '0.5"; a material NAME of potentials/ellipsoid_dep.materials holds SI '
+                         'values, which LJ units refuse)')
     ap.add_argument("--ketol", type=float,
                     help="rest criterion: KE per particle / (m g d) (default 1e-3)")
     ap.add_argument("--input", help="LAMMPS input (default in.deposit)")
