@@ -104,3 +104,20 @@ def test_normal_law_variable(tmp_path):
                                                  "tangential"]
     assert law_words(log, "fix", "ground")[4:9] == ["hertz/material", "3e4", "0.3", "0.5",
                                                     "tangential"]
+
+
+def test_runner_fails_on_a_slab_too_thin(tmp_path):
+    """tools/deposit_run.py on a deposit whose measured slab is thinner than its input's
+    slabmin: no phi printed as a result, a non-zero exit, packing.dat says slab_ok 0 (the
+    runner's own estimate passes N 200; the input asks for 9 mean diameters)"""
+    from study_helpers import PY, TOOLS, run
+    strict = tmp_path / "in.strict"
+    strict.write_text("variable slabmin index 9\ninclude %s\n" % DEPOSIT)
+    out = tmp_path / "run"
+    text = run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "200",
+                "--ketol", "1e-2", "--input", str(strict), "--out", str(out), "--quiet",
+                "--no-image", "--no-plots"], str(tmp_path), 600, ok=False)
+    assert "deposit_run: the deposit is too shallow for its measuring slab" in text
+    assert "volume fraction phi" not in text
+    packing = open(out / "packing.dat").read()
+    assert "slab_ok 0\n" in packing and "slabmin 9\n" in packing
