@@ -28,10 +28,19 @@ def size_moments(dr, alpha=3.0, beta=3.0, radius=0.5, nodes=4000):
     return 4.0 / 3.0 * math.pi * w / r3, 2.0 * r2 / r3
 
 
+def number(st, name, default):
+    """the input variable name of the settings' vars as a number (ValueError naming it)"""
+    value = st["vars"].get(name, default)
+    try:
+        return float(value)
+    except ValueError:
+        raise ValueError("--var %s %s: not a number" % (name, value)) from None
+
+
 def box_width(st):
     """in.deposit's lateral box edge (its geometry section): width, or 0.3 sqrt(N), at least
     5 d and two neighbour cutoffs of the longest particles (4 bmax + 2 skin)"""
-    width = float(st["vars"].get("width", 0))
+    width = number(st, "width", 0)
     bmax = 0.5 * (1 + st["dr"]) * (st["eta"] ** 2 * st["zeta"]) ** (1.0 / 3.0)
     least = max(4 * bmax + 2 * 0.2, 5.0)
     return max(width if width > 0 else 0.3 * math.sqrt(st["N"]), least)
@@ -40,7 +49,7 @@ def box_width(st):
 def too_shallow(st):
     """None, or why the deposit would be too shallow for its measuring slab and the smallest N
     that makes it deep enough at this shape (or the width to give when no N does)"""
-    slabmin = float(st["vars"].get("slabmin", SLAB_MIN))
+    slabmin = number(st, "slabmin", SLAB_MIN)
     if slabmin <= 0:
         return None
     volume, d = size_moments(st["dr"])
@@ -57,7 +66,7 @@ def too_shallow(st):
     # depth it has where it overtakes the least edge
     edge = box_width(dict(st, N=1))
     n = int(math.ceil(need * PHI_DENSE * edge ** 2 / volume))
-    if float(st["vars"].get("width", 0)) > 0 or 0.3 * math.sqrt(n) <= edge:
+    if number(st, "width", 0) > 0 or 0.3 * math.sqrt(n) <= edge:
         return why + "; give --N %d or more" % n
     return why + ("; the 0.3 sqrt(N) box keeps it that shallow at any N: give a narrower box, "
                   "--var width %.4g with --N %d or more" % (edge, n))

@@ -283,9 +283,11 @@ def read_settings(out):
         return None
     with open(path) as f:
         try:
-            return json.load(f)
+            stored = json.load(f)
         except ValueError:
             sys.exit("deposit_run: %s is not readable JSON (a truncated file?)" % path)
+    stored.setdefault("normal", "hertz")    # runs before it was a setting: hertz kn K
+    return stored
 
 
 def write_settings(out, settings):
@@ -332,7 +334,10 @@ def main(argv=None):
     args = parse_args(argv)
     out, settings, resume_from, resume_step = plan(args)
     if resume_from is None:
-        shallow = too_shallow(settings)
+        try:
+            shallow = too_shallow(settings)
+        except ValueError as e:
+            sys.exit("deposit_run: %s" % e)
         if shallow:
             sys.exit("deposit_run: " + shallow + " (--var slabmin 0 runs it without a slab)")
         try:

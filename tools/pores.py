@@ -370,7 +370,7 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
         k["anisotropy_xx_zz"] = 0.5 * (k["xx"] + k["yy"]) / k["zz"] if k["zz"] > 0 else None
         k["ratio_to_kozeny_carman"] = {a: k[a] / kc for a in ("xx", "yy", "zz")}
         result["permeability_flow"] = k
-    for key in ("eta", "zeta", "delta_r", "N", "seed"):
+    for key in ("eta", "zeta", "delta_r", "N", "seed", "at_rest"):    # at_rest 0: said
         if key in pk:
             result[key] = pk[key]
     if picture:

@@ -139,7 +139,8 @@ def deposit_run(*args):
 @pytest.mark.parametrize("args,named", [
     (["--N", "-5"], "--N -5"), (["--eta", "0"], "--eta 0"), (["--zeta", "-1"], "--zeta -1"),
     (["--dr", "1.5"], "--dr 1.5"), (["--np", "0"], "--np 0"), (["--seed", "0"], "--seed 0"),
-    (["--ketol", "0"], "--ketol 0"), (["--normal", "hooke 1 2"], "--normal")])
+    (["--ketol", "0"], "--ketol 0"), (["--normal", "hooke 1 2"], "--normal"),
+    (["--var", "slabmin", "one"], "--var slabmin one")])
 def test_deposit_run_bad_options(tmp_path, args, named):
     code, out = deposit_run(*(args + ["--out", str(tmp_path / "run")]))
     assert_one_line_error(code, out, named)
