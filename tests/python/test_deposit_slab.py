@@ -8,7 +8,10 @@ pour: a hand-made deposit of touching unit spheres on a simple cubic lattice, 5 
 * The normal law is a variable: the default gives the pair and the ground the words of the
   hard-coded law before (hertz kn K), hertz/material reaches both with its material.
 """
+import math
 import os
+import re
+import sys
 
 import pytest
 from lammps import lammps
@@ -121,3 +124,29 @@ def test_runner_fails_on_a_slab_too_thin(tmp_path):
     assert "volume fraction phi" not in text
     packing = open(out / "packing.dat").read()
     assert "slab_ok 0\n" in packing and "slabmin 9\n" in packing
+
+
+@pytest.mark.parametrize("dr", [0.0, 0.6, 0.8])
+def test_depth_estimate_uses_the_pours_sizes(tmp_path, dr):
+    """tools/deposit_depth.py's mean volume is the one fix pour/ellipsoid logs (its sampler's,
+    6 digits), and its number-mean diameter that of 2000 poured particles (compute
+    packing/ellipsoid's dmean, within 5 standard errors of the mean)"""
+    sys.path.insert(0, os.path.join(root_dir(), "tools"))
+    import deposit_depth
+    args = ["-log", str(tmp_path / "log.lammps"), "-screen", "none", "-nocite"]
+    for key, value in {"N": 2000, "dr": dr, "chunk": 1, "maxchunks": 1, "image": 0,
+                       "out": str(tmp_path), "slabmin": 0}.items():
+        args += ["-var", key, str(value)]
+    lmp = lammps(cmdargs=args)
+    try:
+        lmp.file(DEPOSIT)
+    finally:
+        lmp.close()
+    log = open(tmp_path / "log.lammps").read()
+    logged = float(re.search(r"mean volume (\S+)\n", log).group(1))
+    volume, diameter = deposit_depth.size_moments(dr)
+    assert volume == pytest.approx(logged, rel=1e-5)
+    dmean = float(re.search(r"^dmean (\S+)$", open(tmp_path / "packing.dat").read(),
+                            re.M).group(1))
+    spread = 2 * 0.5 * dr / math.sqrt(2000)    # bounds the SD of 2r / sqrt(N)
+    assert dmean == pytest.approx(diameter, abs=5 * spread + 1e-6)
