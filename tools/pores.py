@@ -409,7 +409,7 @@ def compare(run_dirs, out_png, voxel=None, quiet=False):
                 res = json.load(f)
         else:
             res = run_folder(d, voxel=voxel, quiet=quiet, picture=False)
-        pk = read_slab(d)
+        pk = read_packing(os.path.join(d, "packing.dat"))
         if not all(isinstance(pk.get(k), float) for k in ("eta", "zeta")):
             raise ValueError("%s/packing.dat: no eta or zeta" % d)
         by_shape.setdefault((pk["eta"], pk["zeta"]), []).append(res)
