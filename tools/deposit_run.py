@@ -13,7 +13,7 @@ decay rate of the kinetic energy), then plots the histograms to PNG (matplotlib,
 the volume fraction and coordination number and lists the files written. A deposit too
 shallow for its measuring slab is refused before it runs, with the smallest N for the shape
 (tools/deposit_depth.py), and fails if its measured slab is thinner than slabmin (packing.dat
-says slab_ok 0); --var slabmin 0 asks for no slab.
+says slab_ok 0); --var slabmin 0 asks for no check (an empty slab still says slab_ok 0).
 
 Checkpoints: every --checkpoint-every steps LAMMPS writes a restart file, alternately
 checkpoint.a and checkpoint.b in the run folder, so a kill while one is being written leaves
@@ -339,7 +339,7 @@ def main(argv=None):
         except ValueError as e:
             sys.exit("deposit_run: %s" % e)
         if shallow:
-            sys.exit("deposit_run: " + shallow + " (--var slabmin 0 runs it without a slab)")
+            sys.exit("deposit_run: " + shallow + " (--var slabmin 0 runs it without the check)")
         try:
             os.makedirs(out, exist_ok=True)
         except OSError as e:
@@ -371,7 +371,7 @@ def main(argv=None):
         if resume_from:
             f.write("resumed_from %d\n" % resume_step)
             pk["resumed_from"] = resume_step
-    if pk.get("slab_ok", 1) == 0:
+    if pk.get("slab_ok", 1) == 0 and pk.get("slabmin", 1) > 0:    # slabmin 0: no check asked
         sys.exit("deposit_run: the deposit is too shallow for its measuring slab (%.3g mean "
                  "diameters thick, slabmin %g): no phi, Z or forces; packing.dat says slab_ok 0; "
                  "run more particles" % (pk["slab_thickness"], pk["slabmin"]))

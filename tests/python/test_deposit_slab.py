@@ -66,13 +66,16 @@ def warned(log):
             if line.startswith("WARNING: ELLIPSOID_DEP the measuring slab")]
 
 
-def test_too_shallow_for_the_slab(tmp_path):
-    """two layers: the surface at 2 d, the slab [1 d, 0 d] is empty"""
-    pk, log = measure(tmp_path, 2)
+@pytest.mark.parametrize("slabmin", ["1.0", "0"])
+def test_too_shallow_for_the_slab(tmp_path, slabmin):
+    """two layers: the surface at 2 d, the slab [1 d, 0 d] is empty: no result, whatever
+    slabmin asks for"""
+    pk, log = measure(tmp_path, 2, slabmin=slabmin)
     assert pk["slab_ok"] == "0" and float(pk["slab_thickness"]) == 0.0
     assert warned(log) == ["WARNING: ELLIPSOID_DEP the measuring slab is 0.000 mean diameters "
-                           "thick, under slabmin 1.0: the deposit is too shallow, its phi, Z and "
-                           "forces are not results (packing.dat says slab_ok 0)"]
+                           "thick, under slabmin %s or empty: the deposit is too shallow, its "
+                           "phi, Z and forces are not results (packing.dat says slab_ok 0)"
+                           % slabmin]
 
 
 @pytest.mark.parametrize("slabmin,ok", [(1.0, "1"), (2.99, "1"), (3.01, "0")])
