@@ -20,9 +20,10 @@ porosity; these are computed at the voxel size H and at 2 H to show their conver
 Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values. With --flow:
 k_xx, k_yy, k_zz from a Stokes-flow solve with OpenFOAM (tools/pore_flow.py).
 
-The parts: exact volumes and areas in tools/pore_surface.py, the voxel view (pore sizes,
-connectivity, tortuosity) in tools/pore_voxels.py, the largest inscribed ball in
-tools/pore_inscribed.py, the flow solve in tools/pore_flow.py.
+The parts: reading the particles and the slab in tools/pore_input.py, exact volumes and areas
+in tools/pore_surface.py, the voxel view (pore sizes, connectivity, tortuosity) in
+tools/pore_voxels.py, the largest inscribed ball in tools/pore_inscribed.py, the flow solve in
+tools/pore_flow.py, the picture in tools/pore_picture.py.
 
 --compare reads pores.json (running the analysis where it is missing) and packing.dat of
 several run folders and plots porosity, specific surface and permeability against the shape
@@ -40,6 +41,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_packing  # noqa: E402
+# Particles and rotation_matrices: pores' names for its callers too
+from pore_input import Particles, read_dump, read_slab, rotation_matrices  # noqa: E402,F401
+from pore_picture import plot  # noqa: E402
 from pore_surface import slab_fraction, slab_surface  # noqa: E402
 from pore_voxels import (Grid, analyse_voxels, check_memory, periodic_labels,  # noqa: E402
                          voxelize)
@@ -65,108 +69,6 @@ class Progress:
         if not self.quiet:
             print("[pores %6.1f s] %s" % (time.time() - self.t0, msg), file=sys.stderr,
                   flush=True)
-
-
-# ---------------------------------------------------------------------------------------------
-# particles
-
-
-class Particles:
-    """centres (N, 3), rotations (N, 3, 3) body -> box (columns = body axes), semi-axes (N, 3)"""
-
-    def __init__(self, centres, quats, semi):
-        self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
-        self.semi = np.asarray(semi, dtype=float).reshape(-1, 3)
-        quats = np.asarray(quats, dtype=float).reshape(-1, 4)
-        if not len(self.centres):
-            raise ValueError("no particles")
-        if not (np.all(np.isfinite(self.centres)) and np.all(self.semi > 0)):
-            raise ValueError("particles need finite centres and positive semi-axes")
-        norms = np.linalg.norm(quats, axis=1)
-        bad = np.flatnonzero(~(np.isfinite(norms) & (norms > 0)))
-        if bad.size:
-            raise ValueError("%d particles have no orientation (zero quaternion), the first "
-                             "in row %d: %s" % (bad.size, bad[0] + 1,
-                                                " ".join("%g" % q for q in quats[bad[0]])))
-        self.rotations = rotation_matrices(quats)
-        # M = R diag(s^2) R^T and Q = M^-1
-        self.inverse_form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** 2,
-                                      self.rotations)
-        self.form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** -2, self.rotations)
-        self.half_extent = np.sqrt(np.einsum("nii->ni", self.inverse_form))    # along x, y, z
-
-    def __len__(self):
-        return len(self.centres)
-
-    @property
-    def volumes(self):
-        return 4.0 / 3.0 * math.pi * np.prod(self.semi, axis=1)
-
-
-def rotation_matrices(quats):
-    """unit quaternions (w, x, y, z) -> rotation matrices (normalised first)"""
-    q = quats / np.linalg.norm(quats, axis=1)[:, None]
-    w, x, y, z = q.T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
-
-
-def read_dump(path):
-    """last frame of a LAMMPS custom dump with the runner's columns -> (Particles, box (3, 2))"""
-    with open(path) as f:
-        lines = f.read().splitlines()
-    starts = [k for k, line in enumerate(lines) if line.startswith("ITEM: TIMESTEP")]
-    if not starts:
-        raise ValueError("%s: not a LAMMPS dump" % path)
-    frame = lines[starts[-1]:]
-    header = frame[8].split() if len(frame) > 8 else []
-    if header[:2] != ["ITEM:", "ATOMS"] or not frame[2].startswith("ITEM: NUMBER OF ATOMS") \
-            or not frame[4].startswith("ITEM: BOX BOUNDS"):
-        raise ValueError("%s: unexpected dump layout or a truncated last frame (line %d)"
-                         % (path, starts[-1] + 1))
-    try:
-        n = int(frame[3])
-        box = np.array([[float(v) for v in frame[5 + k].split()[:2]] for k in range(3)])
-    except ValueError:
-        raise ValueError("%s: unreadable atom count or box in the last frame" % path) from None
-    if n <= 0:
-        raise ValueError("%s: no atoms in the last frame" % path)
-    columns = header[2:]
-    rows = [row.split() for row in frame[9:9 + n]]
-    short = [k for k, row in enumerate(rows) if len(row) != len(columns)]
-    if len(rows) < n or short:
-        raise ValueError("%s: truncated dump: the last frame holds %d complete atom rows of %d"
-                         % (path, short[0] if short else len(rows), n))
-    try:
-        data = np.array(rows, dtype=float)
-    except ValueError:
-        raise ValueError("%s: a non-numeric value in the atom rows" % path) from None
-
-    def cols(names):
-        missing = [c for c in names if c not in columns]
-        if missing:
-            raise ValueError("%s: missing dump columns %s" % (path, " ".join(missing)))
-        return data[:, [columns.index(c) for c in names]]
-
-    return (Particles(cols(["x", "y", "z"]), cols(["quatw", "quati", "quatj", "quatk"]),
-                      cols(["semi_a_x", "semi_a_y", "semi_a_z"])), box)
-
-
-def read_slab(run_dir):
-    """packing.dat of a finished deposit's run folder, with its slab zlo < zhi"""
-    path = os.path.join(run_dir, "packing.dat")
-    pk = read_packing(path)
-    missing = [k for k in ("zlo", "zhi") if not isinstance(pk.get(k), float)]
-    if missing:
-        raise ValueError("%s: no %s (not the packing.dat of a finished deposit)"
-                         % (path, " or ".join(missing)))
-    if not pk["zhi"] > pk["zlo"] or pk.get("slab_ok", 1) == 0:
-        raise ValueError("%s: %s slab (zlo %g, zhi %g): the deposit is too shallow for its "
-                         "measuring slab" % (path, "empty" if not pk["zhi"] > pk["zlo"]
-                                             else "too thin a", pk["zlo"], pk["zhi"]))
-    return pk
 
 
 # ---------------------------------------------------------------------------------------------
@@ -291,54 +193,6 @@ def write_voxel_image(result, run_dir):
             "values": {"solid": 1, "pore": 0}, "order": "x fastest, then y, then z",
             "shape_xyz": list(solid.shape), "spacing": list(grid.spacing), "origin": list(origin),
             "periodic": ["x", "y"]}
-
-
-def plot(result, particles, path, title):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    grid = result["_grid"]
-    solid, thick = result["_solid_slab"], result["_thickness"]
-    zlo, zhi = result["slab"]["zlo"], result["slab"]["zhi"]
-    lx, ly = grid.nx * grid.hx, grid.ny * grid.hy
-    fig, ax = plt.subplots(2, 2, figsize=(10, 8.5))
-    fig.subplots_adjust(hspace=0.35)
-    show = np.ma.masked_where(solid, thick)
-    cmap = plt.get_cmap("viridis").copy()
-    cmap.set_bad("0.75")
-    vmax = max(float(thick.max()), 1e-12)
-    im = ax[0, 0].imshow(show[:, grid.ny // 2, :].T, origin="lower", cmap=cmap, vmin=0,
-                         vmax=vmax, extent=(0, lx, zlo, zhi), aspect="equal")
-    ax[0, 0].set(xlabel="x", ylabel="z", title="vertical section y = Ly/2 (grey: solid)")
-    ax[0, 1].imshow(show[:, :, grid.nslab // 2].T, origin="lower", cmap=cmap, vmin=0, vmax=vmax,
-                    extent=(0, lx, 0, ly), aspect="equal")
-    ax[0, 1].set(xlabel="x", ylabel="y", title="horizontal section, middle of the slab")
-    fig.colorbar(im, ax=ax[0, :], label="local thickness (pore radius)", shrink=0.8)
-    psd = result["pore_size_distribution"]
-    ax[1, 0].bar(psd["radius"], psd["volume_fraction"], width=psd["bin_width"], color="C0")
-    ax[1, 0].axvline(result["mean_pore_radius"], color="k", ls="--", label="mean")
-    ax[1, 0].set(xlabel="pore radius (local thickness)", ylabel="fraction of pore volume",
-                 title="pore size distribution (voxel %.3g)" % result["voxel_size"])
-    ax[1, 0].legend(fontsize=8)
-    # porosity profile: voxel layers and the exact closed form in the same layers
-    z = zlo + (np.arange(grid.nslab) + 0.5) * grid.hz
-    layers = 1 - solid.mean(axis=(0, 1))
-    ax[1, 1].plot(layers, z, lw=0.8, label="voxel layers")
-    edges = np.linspace(zlo, zhi, min(grid.nslab, 60) + 1)
-    exact = [1 - (slab_fraction(particles, a, b) * particles.volumes).sum() / (lx * ly * (b - a))
-             for a, b in zip(edges[:-1], edges[1:])]
-    ax[1, 1].stairs(exact, edges, orientation="horizontal", color="k", baseline=None,
-                    label="exact (closed form)")
-    ax[1, 1].axvline(result["porosity"], color="gray", ls=":", label="slab porosity")
-    lo, hi = min(min(exact), layers.min()), max(max(exact), layers.max())
-    ax[1, 1].set_xlim(lo - 0.1 * (hi - lo + 0.01), hi + 0.1 * (hi - lo + 0.01))
-    ax[1, 1].set(xlabel="porosity", ylabel="z", title="porosity profile inside the slab")
-    ax[1, 1].legend(fontsize=8)
-    fig.suptitle("%s  porosity %.4f  S_v %.4g  k_KC %.3g" % (
-        title, result["porosity"], result["specific_surface"],
-        result["kozeny_carman_permeability"]), fontsize=10)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
 
 
 def public(result):
