@@ -163,6 +163,9 @@ def print_summary(out, settings, pk, nprocs, wall, more_notes):
         print("  stress of the slab: sigma_zz = %.4g, K0 = sigma_xx/sigma_zz = %.3f; "
               "anisotropy a_n = %.3f (normals), a_f = %.3f (forces)"
               % (pk["sigma_zz"], pk["K0"], pk["a_n"], pk["a_f"]))
+    if pk.get("slab_ok", 1) == 0:
+        print("  WARNING: the measuring slab is empty or thinner than slabmin (slab_ok 0): phi, "
+              "Z and the forces are not results")
     if pk.get("at_rest", 1) == 0:
         print("  WARNING: the deposit is NOT at rest (maxchunks ran out): phi and Z are of a "
               "moving packing; run it again with a larger --var maxchunks (it starts anew)")

@@ -3,14 +3,17 @@
 
     ./ellipsoid-dep run [--N 1000] [--np 2] [--out DIR] [--eta 1.4 --zeta 1.8 --dr 0.6]
                         [--seed S] [--ketol 1e-3] [--checkpoint-every 5000] [--no-image]
-                        [--input FILE] [--quiet]
+                        [--normal "hertz/material E nu e"] [--input FILE] [--quiet]
     ./ellipsoid-dep run --resume DIR          # continue an interrupted run from its checkpoint
 
 Runs `mpirun -np NP $LAMMPS_BUILD/lmp -in in.deposit -var ...` in the run folder
 (default runs/deposit-<timestamp>/), streams its progress (inserted particles, kinetic energy per
 particle against the rest criterion, wall time and an estimate of the time left from the
 decay rate of the kinetic energy), then plots the histograms to PNG (matplotlib, Agg), prints
-the volume fraction and coordination number and lists the files written.
+the volume fraction and coordination number and lists the files written. A deposit too
+shallow for its measuring slab is refused before it runs, with the smallest N for the shape
+(tools/deposit_depth.py), and fails if its measured slab is thinner than slabmin (packing.dat
+says slab_ok 0); --var slabmin 0 asks for no check (an empty slab still says slab_ok 0).
 
 Checkpoints: every --checkpoint-every steps LAMMPS writes a restart file, alternately
 checkpoint.a and checkpoint.b in the run folder, so a kill while one is being written leaves
@@ -28,12 +31,13 @@ import math
 import os
 import re
 import shlex
-import struct
 import subprocess
 import sys
 import time
 
 import deposit_report
+from deposit_checkpoint import CHECKPOINTS, checkpoint_step, newest_checkpoint  # noqa: F401
+from deposit_depth import too_shallow
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..")))
@@ -63,6 +67,9 @@ def lammps_command(settings, out, resume_from=None, log_name="log.lammps"):
                  "out": out, "image": 1 if settings["image"] else 0,
                  "tangential": settings["tangential"],
                  "checkpoint": settings["checkpoint_every"]}
+    normal, material = normal_words(settings)
+    if normal != "hertz":    # the default law's words stay in.deposit's (kn and K)
+        variables.update(normal=normal, material=material)
     variables.update(settings["vars"])
     if resume_from:
         variables["resume"] = resume_from
@@ -71,59 +78,12 @@ def lammps_command(settings, out, resume_from=None, log_name="log.lammps"):
     return cmd
 
 
-# ---- checkpoints ----------------------------------------------------------------------------
-CHECKPOINTS = ("checkpoint.a", "checkpoint.b")
-RESTART_MAGIC = b"LammpS RestartT\0"
-# flags of the restart header (enum in LAMMPS lmprestart.h) up to the time step: strings
-# (VERSION, UNITS), ints (SMALLINT, TAGINT, IMAGEINT), the size of a bigint, NTIMESTEP
-RESTART_STRING_FLAGS, RESTART_INT_FLAGS, RESTART_BIGINT_SIZE, RESTART_NTIMESTEP = \
-    (0, 4), (1, 2, 48), 3, 5
-
-
-def checkpoint_step(path):
-    """Time step of a complete LAMMPS restart file (its magic string at both ends), else None."""
-    try:
-        with open(path, "rb") as f:
-            head = f.read(4096)
-            f.seek(0, os.SEEK_END)
-            if f.tell() < 2 * len(RESTART_MAGIC):
-                return None
-            f.seek(-len(RESTART_MAGIC), os.SEEK_END)
-            tail = f.read()
-    except OSError:
-        return None
-    if not head.startswith(RESTART_MAGIC) or tail != RESTART_MAGIC:
-        return None
-    pos, bigint = len(RESTART_MAGIC) + 8, 8    # after the endian flag and format revision
-    try:
-        while True:
-            (flag,) = struct.unpack_from("i", head, pos)
-            pos += 4
-            if flag in RESTART_STRING_FLAGS:
-                (n,) = struct.unpack_from("i", head, pos)
-                pos += 4 + n
-            elif flag in RESTART_INT_FLAGS or flag == RESTART_BIGINT_SIZE:
-                (value,) = struct.unpack_from("i", head, pos)
-                pos += 4
-                if flag == RESTART_BIGINT_SIZE:
-                    bigint = value
-            elif flag == RESTART_NTIMESTEP:
-                return struct.unpack_from("q" if bigint == 8 else "i", head, pos)[0]
-            else:
-                return None
-    except struct.error:
-        return None
-
-
-def newest_checkpoint(out):
-    """(path, step) of the newer complete checkpoint in the run folder, or (None, None)."""
-    found = [(checkpoint_step(os.path.join(out, name)), os.path.join(out, name))
-             for name in CHECKPOINTS]
-    found = [(step, path) for step, path in found if step is not None]
-    if not found:
-        return None, None
-    step, path = max(found)
-    return path, step
+def normal_words(settings):
+    """the normal law as in.deposit's normal and material variables: "hertz" (kn and K of
+    --var) or "hertz/material NAME" or "hertz/material E nu e"
+    (doc/pair_granular_ellipsoid.rst)"""
+    words = settings.get("normal", DEFAULTS["normal"]).split()
+    return words[0], " ".join(words[1:])
 
 
 class Eta:
@@ -219,9 +179,12 @@ def read_histo(path, columns=3):
 def read_packing(path):
     d = {}
     with open(path) as f:
-        for line in f:
+        for number, line in enumerate(f, 1):
             if line.startswith("#") or not line.strip():
                 continue
+            if len(line.split(None, 1)) != 2:
+                raise ValueError("%s line %d: not a 'key value' line (a truncated file?)"
+                                 % (path, number))
             k, v = line.split(None, 1)
             try:
                 d[k] = float(v)
@@ -232,14 +195,17 @@ def read_packing(path):
 
 # what a run is: stored in its folder, so that --resume continues the same deposit
 DEFAULTS = {"N": 1000, "eta": 1.4, "zeta": 1.8, "dr": 0.6, "seed": 4928,
-            "tangential": "history 2.0e3 0.5", "ketol": 1e-3, "input": DEFAULT_INPUT,
+            "tangential": "history 2.0e3 0.5", "normal": "hertz", "ketol": 1e-3, "input": DEFAULT_INPUT,
             "checkpoint_every": 5000, "image": True, "vars": {}}
 SETTINGS_FILE = "settings.json"
 
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--np", type=int, default=int(os.environ.get("NP", 2)), help="MPI ranks (default 2)")
+    ranks = os.environ.get("NP", "2")
+    if not ranks.isdigit():
+        sys.exit("deposit_run: NP=%s: the number of MPI ranks must be a whole number" % ranks)
+    ap.add_argument("--np", type=int, default=int(ranks), help="MPI ranks (default NP or 2)")
     ap.add_argument("--launcher", default="mpirun -np {np}",
                     help='MPI launcher when np > 1, {np} = ranks (default "mpirun -np {np}"; '
                          'on Slurm e.g. "srun -n {np}")')
@@ -252,6 +218,11 @@ def parse_args(argv):
     ap.add_argument("--tangential",
                     help='tangential law words (default "history 2.0e3 0.5"; the paper\'s '
                          'viscous law: "viscous 0.5")')
+    ap.add_argument("--normal",
+                    help='normal law words (default "hertz", its kn and K by --var kn/K; or '
+                         '"hertz/material E nu e" in LJ units, e.g. "hertz/material 3e4 0.3 '
+                         '0.5"; a material NAME of potentials/ellipsoid_dep.materials holds SI '
+                         'values, which LJ units refuse)')
     ap.add_argument("--ketol", type=float,
                     help="rest criterion: KE per particle / (m g d) (default 1e-3)")
     ap.add_argument("--input", help="LAMMPS input (default in.deposit)")
@@ -277,6 +248,22 @@ def parse_args(argv):
         ap.error("--resume DIR is the run folder: give neither --out nor --continue")
     if args.cont and not args.out:
         ap.error("--continue needs --out DIR")
+    law = (args.normal or "hertz").split()
+    if not (law == ["hertz"] or (law[:1] == ["hertz/material"] and len(law) > 1)):
+        sys.exit('deposit_run: --normal "%s": must be "hertz" (kn and K by --var) or '
+                 '"hertz/material" with its words' % args.normal)
+    for option, value, valid, rule in (
+            ("--np", args.np, args.np >= 1, ">= 1"),
+            ("--N", args.N, args.N is None or args.N >= 1, ">= 1"),
+            ("--eta", args.eta, args.eta is None or args.eta >= 1, "a/b >= 1"),
+            ("--zeta", args.zeta, args.zeta is None or args.zeta >= 1, "b/c >= 1"),
+            ("--dr", args.dr, args.dr is None or 0 <= args.dr < 1, "in [0, 1)"),
+            ("--seed", args.seed, args.seed is None or args.seed >= 1, ">= 1"),
+            ("--ketol", args.ketol, args.ketol is None or args.ketol > 0, "> 0"),
+            ("--checkpoint-every", args.checkpoint_every,
+             args.checkpoint_every is None or args.checkpoint_every >= 0, ">= 0")):
+        if not valid:
+            sys.exit("deposit_run: %s %s: must be %s" % (option, value, rule))
     return args
 
 
@@ -295,7 +282,12 @@ def read_settings(out):
     if not os.path.exists(path):
         return None
     with open(path) as f:
-        return json.load(f)
+        try:
+            stored = json.load(f)
+        except ValueError:
+            sys.exit("deposit_run: %s is not readable JSON (a truncated file?)" % path)
+    stored.setdefault("normal", "hertz")    # runs before it was a setting: hertz kn K
+    return stored
 
 
 def write_settings(out, settings):
@@ -342,7 +334,17 @@ def main(argv=None):
     args = parse_args(argv)
     out, settings, resume_from, resume_step = plan(args)
     if resume_from is None:
-        os.makedirs(out, exist_ok=True)
+        try:
+            shallow = too_shallow(settings)
+        except ValueError as e:
+            sys.exit("deposit_run: %s" % e)
+        if shallow:
+            sys.exit("deposit_run: " + shallow + " (--var slabmin 0 runs it without the check)")
+        try:
+            os.makedirs(out, exist_ok=True)
+        except OSError as e:
+            sys.exit("deposit_run: --out %s: cannot create the run folder (%s)"
+                     % (out, e.strerror))
         start_fresh(out)
         write_settings(out, settings)
     settings.update(np=args.np, launcher=args.launcher)
@@ -369,6 +371,10 @@ def main(argv=None):
         if resume_from:
             f.write("resumed_from %d\n" % resume_step)
             pk["resumed_from"] = resume_step
+    if pk.get("slab_ok", 1) == 0 and pk.get("slabmin", 1) > 0:    # slabmin 0: no check asked
+        sys.exit("deposit_run: the deposit is too shallow for its measuring slab (%.3g mean "
+                 "diameters thick, slabmin %g): no phi, Z or forces; packing.dat says slab_ok 0; "
+                 "run more particles" % (pk["slab_thickness"], pk["slabmin"]))
     st = settings
     title = r"$\eta$=%g $\zeta$=%g $\delta_r$=%g N=%d" % (st["eta"], st["zeta"], st["dr"], st["N"])
     if not args.no_plots:

@@ -6,7 +6,8 @@ of vertical stress and unload it; write the table and the stress-strain figure.
         [--seed S] [--np 2] [--out DIR] [--loads 0.5 1 2 4 2 1 0.5] [--var NAME VALUE ...]
 
 1. The deposit: tools/deposit_run.py with in.deposit's protocol and `-var save 1` (it then
-   writes deposit.restart at rest) into DIR/deposit; a deposit already there is reused.
+   writes deposit.restart at rest) into DIR/deposit; a deposit already there is reused if its
+   settings.json has the asked N, eta, zeta, dr and seed (and the hertz law), else refused.
 2. The loading: examples/oedometer/in.oedometer reads it and loads it by the piston; each step
    ends at rest (the input states the criterion) with a LEVEL line.
 3. DIR/oedometer.csv, one row per step, and DIR/stress_strain.png. The strain is
@@ -53,13 +54,34 @@ def parse_args(argv):
     args = ap.parse_args(argv)
     if any(x <= 0 for x in args.loads):
         ap.error("--loads: every stress must be > 0 (the piston pushes)")
+    for option, value in (("--N", args.N), ("--np", args.np)):
+        if value < 1:
+            sys.exit("oedometer_run: %s %d: must be >= 1" % (option, value))
     return args
 
 
+def deposit_mismatch(args, settings):
+    """None, or how the deposit's stored settings differ from this run's request"""
+    if settings is None:
+        return "it has no settings.json: not a deposit of tools/deposit_run.py"
+    asked = {"N": args.N, "eta": args.eta, "zeta": args.zeta, "dr": args.dr, "seed": args.seed,
+             "normal": "hertz"}
+    stored = dict(settings, normal=deposit_run.normal_words(settings)[0])
+    differ = ["%s %s (asked %s)" % (k, stored.get(k), v) for k, v in asked.items()
+              if stored.get(k) != v]
+    return "it was made with " + ", ".join(differ) if differ else None
+
+
 def make_deposit(args, folder):
-    """deposit.restart of in.deposit's protocol in folder (reused when there)"""
+    """deposit.restart of in.deposit's protocol in folder (reused when it is of the same
+    N, shape, size spread and seed; another deposit there is refused)"""
     restart = os.path.join(folder, "deposit.restart")
-    if not os.path.exists(restart):
+    if os.path.exists(restart):
+        why = deposit_mismatch(args, deposit_run.read_settings(folder))
+        if why:
+            sys.exit("oedometer_run: the deposit in %s is not the one asked for: %s (in.oedometer "
+                     "loads hertz deposits); give another --out or remove it" % (folder, why))
+    else:
         deposit_run.main(["--N", str(args.N), "--eta", str(args.eta), "--zeta", str(args.zeta),
                           "--dr", str(args.dr), "--seed", str(args.seed), "--np", str(args.np),
                           "--out", folder, "--var", "save", "1", "--no-image", "--no-plots",

@@ -58,8 +58,10 @@ def case_key(row):
 
 
 def run(args):
+    """the cases missing from the csv; returns how many ran"""
     os.makedirs(RESULTS, exist_ok=True)
     done = {case_key(r) for r in read_table()}
+    ran = 0
     for seed in args.seeds:
         for shape in args.shapes:
             if (shape, shape, seed, args.N) in done:
@@ -76,6 +78,8 @@ def run(args):
                 for r in rows:
                     w.writerow({k: ("%.8g" % v if isinstance(v, float) else v)
                                 for k, v in r.items()})
+            ran += 1
+    return ran
 
 
 def summarise(rows):
@@ -293,8 +297,10 @@ def main(argv=None):
     ap.add_argument("--runs", default=os.path.join(ROOT, "runs", "oedometer"),
                     help="folder of the runs (default runs/oedometer)")
     args = ap.parse_args(argv)
-    if args.mode == "run":
-        run(args)
+    if args.mode == "run" and not run(args):
+        print("oedometer_study: every case is in %s already: nothing ran, nothing written "
+              "(`report` writes the summary again)" % TABLE)
+        return
     report()
 
 

@@ -32,7 +32,7 @@ def solve_folder(folder, out, voxel_per_d, directions):
             return json.load(f)
     progress = pores.Progress()
     particles, box = pores.read_dump(os.path.join(folder, "deposit.dump"))
-    pk = pores.read_packing(os.path.join(folder, "packing.dat"))
+    pk = pores.read_slab(folder)
     zlo, zhi = pk["zlo"], pk["zhi"]
     d = float(np.mean(2.0 * np.cbrt(np.prod(particles.semi, axis=1))))
     t0 = time.time()
@@ -105,7 +105,7 @@ def main(argv=None):
         try:
             rows.append(solve_folder(folder, args.out, args.flow_voxel_per_d,
                                      tuple(args.directions.split(","))))
-        except (ValueError, OSError) as e:
+        except (ValueError, RuntimeError, OSError) as e:    # RuntimeError: pore_flow.FlowError
             print("pore_flow_lines: %s skipped: %s" % (folder, e), file=sys.stderr)
     if not rows:
         sys.exit("pore_flow_lines: no deposit solved")

@@ -2,6 +2,7 @@
 particles, the pore sizes from local thickness, the connectivity from bottom to top, the
 geometric tortuosity, and the analysis of one voxel size (analyse_voxels)."""
 import math
+import os
 
 import numpy as np
 from scipy import ndimage
@@ -11,6 +12,32 @@ from pore_inscribed import largest_inscribed_ball
 BIN_FRACTION = 0.125      # pore-size bins: this fraction of the smallest semi-axis wide
 PROGRESS_VOXELS = 2_000_000    # show progress above this many voxels
 TORTUOSITY_MAX_VOXELS = 1_500_000    # pore voxels; the path graph needs ~0.6 kB per voxel
+# peak memory of the analysis per voxel of the image with its margins (doc/howto_pores.md)
+VOXEL_BYTES = 80
+
+
+def memory_bytes():
+    """this machine's physical memory"""
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+
+
+def check_memory(grid, voxel, bytes_per_voxel, option):
+    """ValueError, before anything is allocated, when the grid's voxels would need more memory
+    than the machine has (numpy would fail with a MemoryError, or the machine swap for hours)"""
+    voxels = grid.nx * grid.ny * grid.nz
+    need, have = voxels * bytes_per_voxel, memory_bytes()
+    if need > have:
+        raise ValueError("%s %.4g: %d x %d x %d = %.3g voxels would need about %s of memory "
+                         "(%d bytes per voxel), more than this machine's %s; give a larger %s"
+                         % (option, voxel, grid.nx, grid.ny, grid.nz, voxels, size_text(need),
+                            bytes_per_voxel, size_text(have), option))
+
+
+def size_text(nbytes):
+    for unit, scale in (("TiB", 2 ** 40), ("GiB", 2 ** 30), ("MiB", 2 ** 20)):
+        if nbytes >= scale:
+            return "%.3g %s" % (nbytes / scale, unit)
+    return "%d bytes" % nbytes
 
 
 class Grid:
@@ -179,6 +206,7 @@ def analyse_voxels(particles, box, zlo, zhi, voxel, progress, check=True):
     margin = float(particles.semi.max())    # doubled below while a pore is wider than half
     for _ in range(4):
         grid = Grid(box, zlo, zhi, voxel, margin)
+        check_memory(grid, voxel, VOXEL_BYTES, "--voxel")
         progress("voxel grid %d x %d x %d (slab %d layers), voxel %.4g"
                  % (grid.nx, grid.ny, grid.nz, grid.nslab, voxel))
         solid = voxelize(particles, grid, progress)

@@ -20,9 +20,10 @@ porosity; these are computed at the voxel size H and at 2 H to show their conver
 Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values. With --flow:
 k_xx, k_yy, k_zz from a Stokes-flow solve with OpenFOAM (tools/pore_flow.py).
 
-The parts: exact volumes and areas in tools/pore_surface.py, the voxel view (pore sizes,
-connectivity, tortuosity) in tools/pore_voxels.py, the largest inscribed ball in
-tools/pore_inscribed.py, the flow solve in tools/pore_flow.py.
+The parts: reading the particles and the slab in tools/pore_input.py, exact volumes and areas
+in tools/pore_surface.py, the voxel view (pore sizes, connectivity, tortuosity) in
+tools/pore_voxels.py, the largest inscribed ball in tools/pore_inscribed.py, the flow solve in
+tools/pore_flow.py, the picture in tools/pore_picture.py.
 
 --compare reads pores.json (running the analysis where it is missing) and packing.dat of
 several run folders and plots porosity, specific surface and permeability against the shape
@@ -40,14 +41,20 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_packing  # noqa: E402
+# Particles and rotation_matrices: pores' names for its callers too
+from pore_input import Particles, read_dump, read_slab, rotation_matrices  # noqa: E402,F401
+from pore_picture import plot  # noqa: E402
 from pore_surface import slab_fraction, slab_surface  # noqa: E402
-from pore_voxels import Grid, analyse_voxels, periodic_labels, voxelize  # noqa: E402
+from pore_voxels import (Grid, analyse_voxels, check_memory, periodic_labels,  # noqa: E402
+                         voxelize)
 from study_stats import Pooled  # noqa: E402
 
 VOXEL_FRACTION = 0.125    # default voxel size: this fraction of the smallest semi-axis
 MAX_VOXEL_FRACTION = 0.5  # larger voxels cannot resolve the thinnest particle dimension
 FLOW_VOXEL_FRACTION = 0.25    # default voxel of the flow solve (doc/howto_pores.md)
 MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thinnest particle
+# the flow's voxel image and its labels, before OpenFOAM's mesh (a lower bound of its memory)
+FLOW_IMAGE_BYTES = 16
 KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
 
 
@@ -62,69 +69,6 @@ class Progress:
         if not self.quiet:
             print("[pores %6.1f s] %s" % (time.time() - self.t0, msg), file=sys.stderr,
                   flush=True)
-
-
-# ---------------------------------------------------------------------------------------------
-# particles
-
-
-class Particles:
-    """centres (N, 3), rotations (N, 3, 3) body -> box (columns = body axes), semi-axes (N, 3)"""
-
-    def __init__(self, centres, quats, semi):
-        self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
-        self.semi = np.asarray(semi, dtype=float).reshape(-1, 3)
-        self.rotations = rotation_matrices(np.asarray(quats, dtype=float).reshape(-1, 4))
-        if not (np.all(np.isfinite(self.centres)) and np.all(self.semi > 0)):
-            raise ValueError("particles need finite centres and positive semi-axes")
-        # M = R diag(s^2) R^T and Q = M^-1
-        self.inverse_form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** 2,
-                                      self.rotations)
-        self.form = np.einsum("nij,nj,nkj->nik", self.rotations, self.semi ** -2, self.rotations)
-        self.half_extent = np.sqrt(np.einsum("nii->ni", self.inverse_form))    # along x, y, z
-
-    def __len__(self):
-        return len(self.centres)
-
-    @property
-    def volumes(self):
-        return 4.0 / 3.0 * math.pi * np.prod(self.semi, axis=1)
-
-
-def rotation_matrices(quats):
-    """unit quaternions (w, x, y, z) -> rotation matrices (normalised first)"""
-    q = quats / np.linalg.norm(quats, axis=1)[:, None]
-    w, x, y, z = q.T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
-
-
-def read_dump(path):
-    """last frame of a LAMMPS custom dump with the runner's columns -> (Particles, box (3, 2))"""
-    with open(path) as f:
-        lines = f.read().splitlines()
-    starts = [k for k, line in enumerate(lines) if line.startswith("ITEM: TIMESTEP")]
-    if not starts:
-        raise ValueError("%s: not a LAMMPS dump" % path)
-    frame = lines[starts[-1]:]
-    n = int(frame[3])
-    box = np.array([[float(v) for v in frame[5 + k].split()[:2]] for k in range(3)])
-    header = frame[8].split()
-    if header[:2] != ["ITEM:", "ATOMS"]:
-        raise ValueError("%s: unexpected dump layout" % path)
-    columns = header[2:]
-    data = np.array([row.split() for row in frame[9:9 + n]], dtype=float).reshape(n, -1)
-
-    def cols(names):
-        missing = [c for c in names if c not in columns]
-        if missing:
-            raise ValueError("%s: missing dump columns %s" % (path, " ".join(missing)))
-        return data[:, [columns.index(c) for c in names]]
-
-    return (Particles(cols(["x", "y", "z"]), cols(["quatw", "quati", "quatj", "quatk"]),
-                      cols(["semi_a_x", "semi_a_y", "semi_a_z"])), box)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -149,6 +93,9 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None, voxel_fraction=
     v_slab = area_xy * (zhi - zlo)
     v_solid = float((slab_fraction(particles, zlo, zhi) * particles.volumes).sum())
     porosity = 1.0 - v_solid / v_slab
+    if porosity < 0:
+        raise ValueError("the particles' volume in the slab exceeds the slab's (porosity %.4g): "
+                         "they overlap, this is not a deposit" % porosity)
     surface, quad_change, ncut = slab_surface(particles, zlo, zhi)
     s_v = surface / v_slab
     progress("exact: porosity %.5f, specific surface %.5g" % (porosity, s_v))
@@ -195,7 +142,6 @@ def flow_permeability(particles, box, zlo, zhi, voxel=None, progress=None, workd
     """k_xx, k_yy, k_zz of the slab from the Stokes-flow solve (tools/pore_flow.py) on a voxel
     image of the slab alone, in units of d^2 (d: the mean volume-equivalent diameter)"""
     import pore_flow
-    pore_flow.require_openfoam()
     progress = progress or Progress(quiet=True)
     smallest = float(particles.semi.min())
     voxel = FLOW_VOXEL_FRACTION * smallest if voxel is None else voxel
@@ -203,6 +149,8 @@ def flow_permeability(particles, box, zlo, zhi, voxel=None, progress=None, workd
         raise ValueError("flow voxel %.4g: needs 0 < voxel <= %g x the smallest semi-axis (%.4g)"
                          % (voxel, MAX_FLOW_VOXEL_FRACTION, MAX_FLOW_VOXEL_FRACTION * smallest))
     grid = Grid(box, zlo, zhi, voxel, margin=0.0)
+    check_memory(grid, voxel, FLOW_IMAGE_BYTES, "--flow-voxel")
+    pore_flow.require_openfoam()
     solid = voxelize(particles, grid, progress)[:, :, grid.slab]
     labels, _ = periodic_labels(~solid)
     spanning = np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
@@ -247,54 +195,6 @@ def write_voxel_image(result, run_dir):
             "periodic": ["x", "y"]}
 
 
-def plot(result, particles, path, title):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    grid = result["_grid"]
-    solid, thick = result["_solid_slab"], result["_thickness"]
-    zlo, zhi = result["slab"]["zlo"], result["slab"]["zhi"]
-    lx, ly = grid.nx * grid.hx, grid.ny * grid.hy
-    fig, ax = plt.subplots(2, 2, figsize=(10, 8.5))
-    fig.subplots_adjust(hspace=0.35)
-    show = np.ma.masked_where(solid, thick)
-    cmap = plt.get_cmap("viridis").copy()
-    cmap.set_bad("0.75")
-    vmax = max(float(thick.max()), 1e-12)
-    im = ax[0, 0].imshow(show[:, grid.ny // 2, :].T, origin="lower", cmap=cmap, vmin=0,
-                         vmax=vmax, extent=(0, lx, zlo, zhi), aspect="equal")
-    ax[0, 0].set(xlabel="x", ylabel="z", title="vertical section y = Ly/2 (grey: solid)")
-    ax[0, 1].imshow(show[:, :, grid.nslab // 2].T, origin="lower", cmap=cmap, vmin=0, vmax=vmax,
-                    extent=(0, lx, 0, ly), aspect="equal")
-    ax[0, 1].set(xlabel="x", ylabel="y", title="horizontal section, middle of the slab")
-    fig.colorbar(im, ax=ax[0, :], label="local thickness (pore radius)", shrink=0.8)
-    psd = result["pore_size_distribution"]
-    ax[1, 0].bar(psd["radius"], psd["volume_fraction"], width=psd["bin_width"], color="C0")
-    ax[1, 0].axvline(result["mean_pore_radius"], color="k", ls="--", label="mean")
-    ax[1, 0].set(xlabel="pore radius (local thickness)", ylabel="fraction of pore volume",
-                 title="pore size distribution (voxel %.3g)" % result["voxel_size"])
-    ax[1, 0].legend(fontsize=8)
-    # porosity profile: voxel layers and the exact closed form in the same layers
-    z = zlo + (np.arange(grid.nslab) + 0.5) * grid.hz
-    layers = 1 - solid.mean(axis=(0, 1))
-    ax[1, 1].plot(layers, z, lw=0.8, label="voxel layers")
-    edges = np.linspace(zlo, zhi, min(grid.nslab, 60) + 1)
-    exact = [1 - (slab_fraction(particles, a, b) * particles.volumes).sum() / (lx * ly * (b - a))
-             for a, b in zip(edges[:-1], edges[1:])]
-    ax[1, 1].stairs(exact, edges, orientation="horizontal", color="k", baseline=None,
-                    label="exact (closed form)")
-    ax[1, 1].axvline(result["porosity"], color="gray", ls=":", label="slab porosity")
-    lo, hi = min(min(exact), layers.min()), max(max(exact), layers.max())
-    ax[1, 1].set_xlim(lo - 0.1 * (hi - lo + 0.01), hi + 0.1 * (hi - lo + 0.01))
-    ax[1, 1].set(xlabel="porosity", ylabel="z", title="porosity profile inside the slab")
-    ax[1, 1].legend(fontsize=8)
-    fig.suptitle("%s  porosity %.4f  S_v %.4g  k_KC %.3g" % (
-        title, result["porosity"], result["specific_surface"],
-        result["kozeny_carman_permeability"]), fontsize=10)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
 def public(result):
     return {k: v for k, v in result.items() if not k.startswith("_")}
 
@@ -309,7 +209,7 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
         if not os.path.isfile(os.path.join(run_dir, name)):
             raise ValueError("%s: no %s (not a finished deposit's run folder)" % (run_dir, name))
     particles, box = read_dump(os.path.join(run_dir, "deposit.dump"))
-    pk = read_packing(os.path.join(run_dir, "packing.dat"))
+    pk = read_slab(run_dir)
     progress("%d particles, slab z in [%g, %g]" % (len(particles), pk["zlo"], pk["zhi"]))
     # the flow first: its bad input (no pore path, a voxel too large) ends the run early
     k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"], flow_voxel, progress)
@@ -324,7 +224,7 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
         k["anisotropy_xx_zz"] = 0.5 * (k["xx"] + k["yy"]) / k["zz"] if k["zz"] > 0 else None
         k["ratio_to_kozeny_carman"] = {a: k[a] / kc for a in ("xx", "yy", "zz")}
         result["permeability_flow"] = k
-    for key in ("eta", "zeta", "delta_r", "N", "seed"):
+    for key in ("eta", "zeta", "delta_r", "N", "seed", "at_rest"):    # at_rest 0: said
         if key in pk:
             result[key] = pk[key]
     if picture:
@@ -364,6 +264,8 @@ def compare(run_dirs, out_png, voxel=None, quiet=False):
         else:
             res = run_folder(d, voxel=voxel, quiet=quiet, picture=False)
         pk = read_packing(os.path.join(d, "packing.dat"))
+        if not all(isinstance(pk.get(k), float) for k in ("eta", "zeta")):
+            raise ValueError("%s/packing.dat: no eta or zeta" % d)
         by_shape.setdefault((pk["eta"], pk["zeta"]), []).append(res)
     fig, axes = plt.subplots(1, len(COMPARED), figsize=(4.2 * len(COMPARED), 3.6))
     table = []
@@ -420,8 +322,12 @@ def main(argv=None):
     import pore_flow
     try:
         report(ap, args)
-    except (ValueError, OSError, pore_flow.FlowError) as e:
+    except (ValueError, RuntimeError, OSError, pore_flow.FlowError) as e:
         print("pores: ERROR: %s" % e, file=sys.stderr)
+        sys.exit(2)
+    except MemoryError:
+        print("pores: ERROR: out of memory; give a larger --voxel or --flow-voxel",
+              file=sys.stderr)
         sys.exit(2)
 
 

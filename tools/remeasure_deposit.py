@@ -24,6 +24,7 @@ to the printed digits.
 import argparse
 import os
 import shutil
+import sys
 import tempfile
 
 import numpy as np
@@ -60,16 +61,27 @@ def write_data(dump, path):
 def read_keys(path):
     """packing.dat as an ordered list of (key, value text)"""
     pairs = []
-    for line in open(path):
+    for number, line in enumerate(open(path), 1):
         if line.strip() and not line.startswith("#"):
+            if len(line.split(None, 1)) != 2:
+                raise ValueError("%s line %d: not a 'key value' line" % (path, number))
             key, value = line.split(None, 1)
             pairs.append((key, value.strip()))
     return pairs
 
 
+NEEDED = ("steps", "at_rest", "N", "eta", "zeta", "delta_r", "seed")
+
+
 def remeasure(run_dir, into):
+    for name in ("deposit.dump", "packing.dat"):
+        if not os.path.isfile(os.path.join(run_dir, name)):
+            raise ValueError("%s: no %s (not a finished deposit's run folder)" % (run_dir, name))
     old = read_keys(os.path.join(run_dir, "packing.dat"))
     values = dict(old)
+    missing = [k for k in NEEDED if k not in values]
+    if missing:
+        raise ValueError("%s/packing.dat: no %s" % (run_dir, ", ".join(missing)))
     with tempfile.TemporaryDirectory() as tmp:
         data = os.path.join(tmp, "deposit.data")
         write_data(os.path.join(run_dir, "deposit.dump"), data)
@@ -112,10 +124,15 @@ def main():
     if len(into) != len(args.runs):
         ap.error("--into needs one folder per run folder")
     for k, (run_dir, out) in enumerate(zip(args.runs, into)):
-        old, new = remeasure(run_dir, out)
-        print("[%d/%d] %s: phi %s -> %s, Z %s -> %s, zhi %s -> %s" % (
-            k + 1, len(args.runs), os.path.basename(os.path.normpath(run_dir)), old["phi"],
-            new["phi"], old["Z"], new["Z"], old["zhi"], new["zhi"]), flush=True)
+        try:
+            old, new = remeasure(run_dir, out)
+        except (ValueError, OSError) as e:
+            sys.exit("remeasure_deposit: ERROR: %s" % e)
+        print("[%d/%d] %s: phi %s -> %s, Z %s -> %s, zhi %s -> %s%s" % (
+            k + 1, len(args.runs), os.path.basename(os.path.normpath(run_dir)), old.get("phi"),
+            new["phi"], old.get("Z"), new["Z"], old.get("zhi"), new["zhi"],
+            "" if new.get("slab_ok", "1") == "1" else
+            "; the slab is too thin (slab_ok 0): no result"), flush=True)
 
 
 if __name__ == "__main__":

@@ -13,6 +13,7 @@ lower bound otherwise). The rms residuals say how well each form fits.
 """
 import argparse
 import math
+import os
 import sys
 
 import matplotlib
@@ -28,10 +29,14 @@ def janssen(h, a, lam):
 
 
 def fit(path, radius, mu_w):
-    data = np.loadtxt(f"{path}/silo.dat", ndmin=2)
+    """path: a run folder (its silo.dat) or a silo.dat file"""
+    path = os.path.join(path, "silo.dat") if os.path.isdir(path) else path
+    if not os.path.isfile(path):
+        sys.exit(f"plot_silo.py: no {path} (run run_silo.py --out DIR first)")
+    data = np.loadtxt(path, ndmin=2)
     h, sigma, weight = data[:, 2], data[:, 3], data[:, 6]
     if len(h) < 3:
-        sys.exit(f"plot_silo.py: {path}/silo.dat has {len(h)} stages; the fit needs 3")
+        sys.exit(f"plot_silo.py: {path} has {len(h)} stages; the fit needs 3")
     rho_g = weight[-1] / (math.pi * radius**2 * h[-1])
     (lam1,), cov1 = curve_fit(lambda x, lam: janssen(x, rho_g * lam, lam), h, sigma,
                               p0=(radius,))
@@ -44,7 +49,42 @@ def fit(path, radius, mu_w):
                 rms1=np.sqrt(np.mean((janssen(h, rho_g * lam1, lam1) - sigma) ** 2)),
                 a=a, da=da, lam=lam, dlam=dlam, k_mu_free=radius / (2.0 * lam),
                 rms=np.sqrt(np.mean((janssen(h, a, lam) - sigma) ** 2)),
-                check=a / (rho_g * lam))
+                check=a / (rho_g * lam), stages=len(h), side=data[-1, 5] / weight[-1])
+
+
+SATURATED = 5    # the stages from this one on hold the saturated floor stress (H > 16 d)
+
+
+def table(fits, radius):
+    """the README's table (markdown rows) of fits {label: fit(...)}"""
+    rows = [("bulk rho_b g / (rho g), last stage (= packing fraction)",
+             lambda r: "%.3f" % r["rho_g"]),
+            ("saturated floor stress sigma_inf (stages %d-%d, mean +- SD)",
+             lambda r: "%.4f +- %.4f" % saturated(r)),
+            ("K mu_w = rho_b g R / (2 sigma_inf)",
+             lambda r: "%.3f" % (r["rho_g"] * radius / (2 * saturated(r)[0]))),
+            ("weight carried by the side at H = %s d",
+             lambda r: "%.0f %%" % (100 * r["side"])),
+            ("Janssen fit (lambda alone): lambda, K mu_w, rms residual",
+             lambda r: "%.1f +- %.1f d, %.3f, %.2f" % (r["lam1"], r["dlam1"], r["k_mu"],
+                                                       r["rms1"])),
+            ("free amplitude fit: lambda, A / (rho_b g lambda), rms",
+             lambda r: "%.1f +- %.1f d, %.2f, %.2f" % (r["lam"], r["dlam"], r["check"],
+                                                       r["rms"]))]
+    first = next(iter(fits.values()))
+    heights = "-".join("%.0f" % r["h"][-1] for r in fits.values())
+    lines = ["| | " + " | ".join(fits) + " |", "|---" * (len(fits) + 1) + "|"]
+    for label, value in rows:
+        label = label % ((SATURATED, first["stages"]) if "stages" in label else
+                         (heights,) if "%s" in label else ())
+        lines.append("| %s | %s |" % (label, " | ".join(value(r) for r in fits.values())))
+    return "\n".join(lines)
+
+
+def saturated(r):
+    """mean and sample SD of the floor stress over the saturated stages"""
+    tail = r["sigma"][SATURATED - 1:]
+    return float(np.mean(tail)), float(np.std(tail, ddof=1))
 
 
 def main():
@@ -53,7 +93,11 @@ def main():
     p.add_argument("--mu_w", type=float, required=True)
     p.add_argument("--run", nargs=2, action="append", metavar=("LABEL", "DIR"), required=True)
     p.add_argument("--figure", required=True)
+    p.add_argument("--table", action="store_true",
+                   help="also print the README's table of the runs (markdown)")
     a = p.parse_args()
+    if a.table:
+        print(table({label: fit(path, a.R, a.mu_w) for label, path in a.run}, a.R))
     fig, ax = plt.subplots(figsize=(5.5, 4))
     for (label, path), colour in zip(a.run, ("C0", "C1", "C2", "C3")):
         r = fit(path, a.R, a.mu_w)

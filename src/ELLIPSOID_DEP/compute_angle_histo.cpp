@@ -57,10 +57,7 @@ void ComputeAngleHisto::parse_args(int narg, char **arg)
   while (iarg < narg) {
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, fmt::format("compute {}", name), error);
     if (strcmp(arg[iarg], "bins") == 0) {
-      nbins = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (nbins < 1) error->all(FLERR, "Compute {} bins must be >= 1", name);
-      // the sums (3 per bin) are reduced with one MPI call, whose count is an int
-      if (nbins > (MAXSMALLINT - 64) / 3) error->all(FLERR, "Compute {} bins is too large", name);
+      nbins = parse_histogram_bins(lmp, name, iarg + 1, arg[iarg + 1]);
     } else if (!slab.parse(arg[iarg], arg[iarg + 1]) && !parse_keyword(arg[iarg], arg[iarg + 1]))
       error->all(FLERR, "Unknown compute {} keyword: {}", name, arg[iarg]);
     iarg += 2;

@@ -46,10 +46,7 @@ ComputeForceHisto::ComputeForceHisto(LAMMPS *lmp, int narg, char **arg) :
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "compute force/histo", error);
     const char *key = arg[iarg], *value = arg[iarg + 1];
     if (strcmp(key, "bins") == 0) {
-      nbins = utils::inumeric(FLERR, value, false, lmp);
-      if (nbins < 1) error->all(FLERR, "Compute force/histo bins must be >= 1");
-      // the bins and the count beyond max are reduced with one MPI call, whose count is an int
-      if (nbins > MAXSMALLINT - 1) error->all(FLERR, "Compute force/histo bins is too large");
+      nbins = parse_histogram_bins(lmp, "force/histo", iarg + 1, value);
     } else if (strcmp(key, "max") == 0) {
       xmax = utils::numeric(FLERR, value, false, lmp);
       if (!(xmax > 0.0)) error->all(FLERR, "Compute force/histo max must be > 0");

@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   ELLIPSOID_DEP: the slab keywords of the histogram computes (see granular_slab.h)
+   ELLIPSOID_DEP: the slab and bins keywords of the histogram computes (see granular_slab.h)
 ------------------------------------------------------------------------- */
 
 #include "granular_slab.h"
@@ -70,4 +70,14 @@ SlabOption::Bounds SlabOption::bounds() const
     b.zhi = slab_compute->vector[ZHI_ELEMENT - 1];
   }
   return b;
+}
+
+int LAMMPS_NS::parse_histogram_bins(LAMMPS *lmp, const char *name, int iarg, const char *value)
+{
+  const int nbins = utils::inumeric(FLERR, value, false, lmp);
+  if (nbins < 1) lmp->error->all(FLERR, iarg, "Compute {} bins must be >= 1", name);
+  if (nbins > HISTOGRAM_MAX_BINS)
+    lmp->error->all(FLERR, iarg, "Compute {} bins is too large: {} > {}", name, nbins,
+                    HISTOGRAM_MAX_BINS);
+  return nbins;
 }

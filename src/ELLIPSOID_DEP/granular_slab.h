@@ -1,9 +1,9 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: the horizontal slab zlo <= z < zhi of the histogram computes (contact/histo,
-   orient/histo, force/histo): the keywords zlo and zhi as numbers, or slab ID, a compute
-   packing/ellipsoid whose vector elements 5 and 6 are its zlo and zhi (e.g. its auto slab),
-   read as a c_ID[5] and c_ID[6] reference would (its doc page; test_computes.py checks the
-   histograms against zlo/zhi given as numbers).
+   orient/histo, force/histo) and their bins keyword. The slab: the keywords zlo and zhi as
+   numbers, or slab ID, a compute packing/ellipsoid whose vector elements 5 and 6 are its zlo
+   and zhi (e.g. its auto slab), read as a c_ID[5] and c_ID[6] reference would (its doc page;
+   test_computes.py checks the histograms against zlo/zhi given as numbers).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANULAR_SLAB_H
@@ -45,6 +45,13 @@ class SlabOption {
   char *slab_id = nullptr;
   Compute *slab_compute = nullptr;
 };
+
+// the bins keyword's value arg[iarg] of a histogram compute (name: its style, for the
+// messages), one limit for all of them: far above any histogram of a deposit, and small
+// enough that the arrays stay a few tens of MB and the per-bin sums of one MPI reduction fit
+// its int count
+constexpr int HISTOGRAM_MAX_BINS = 1000000;
+int parse_histogram_bins(LAMMPS *lmp, const char *name, int iarg, const char *value);
 
 }    // namespace LAMMPS_NS
 

@@ -25,8 +25,8 @@ EVERY = 1000    # the pour's second batch comes between steps 1000 and 2000 (at 
 # an insertion region sized for volume fraction 0.6, more than random insertion reaches, so the
 # pour takes several batches and the first checkpoint falls while it is still inserting
 SETTINGS = ["--N", str(N), "--eta", "1", "--zeta", "1", "--dr", "0", "--ketol", "1e-2",
-            "--no-image", "--var", "fins", "0.6", "--var", "dt", "3e-4",
-            "--checkpoint-every", str(EVERY)]
+            "--no-image", "--var", "fins", "0.6", "--var", "dt", "3e-4", "--var", "slabmin",
+            "0", "--checkpoint-every", str(EVERY)]
 QUIET = ["--np", "1", "--no-plots", "--quiet"]
 
 

@@ -206,6 +206,13 @@ def test_bad_keywords_and_requirements():
                 ("compute c all force/histo bins 0", "bins must be >= 1"),
                 ("compute c all force/histo bins 2147483647", "bins is too large"),
                 ("compute c all contact/histo bins 1000000000", "bins is too large"),
+                # one limit for the three histogram computes, with one message
+                ("compute c all force/histo bins 1000001",
+                 "Compute force/histo bins is too large: 1000001 > 1000000"),
+                ("compute c all contact/histo bins 1000001",
+                 "Compute contact/histo bins is too large: 1000001 > 1000000"),
+                ("compute c all orient/histo bins 1000001",
+                 "Compute orient/histo bins is too large: 1000001 > 1000000"),
                 ("compute c all force/histo select middle", "select must be 'point' or 'center'"),
                 ("compute c all force/histo weight force", "Unknown compute force/histo keyword"),
                 ("compute c all force/histo zlo 1 slab pk", "use either 'slab' or 'zlo'/'zhi'"),

@@ -7,6 +7,7 @@ tiny study's), which the checks here do not depend on."""
 import math
 import os
 
+import deposit_depth
 import deposit_run
 import pytest
 
@@ -16,7 +17,8 @@ from study_helpers import PY, TOOLS, assert_image, run
 def test_default_deposit(tmp_path):
     out = tmp_path / "dep"
     text = run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "2", "--N", "40",
-                "--ketol", "1e-2", "--out", str(out), "--quiet"], str(tmp_path), 600)
+                "--ketol", "1e-2", "--out", str(out), "--quiet", "--var", "slabmin", "0"],
+               str(tmp_path), 600)
     assert "volume fraction phi" in text
     for name in ("log.lammps", "packing.dat", "contact_histo.dat", "orient_histo.dat",
                  "contact_force_histo.dat", "force_histo.dat", "profile.dat", "deposit.dump"):
@@ -30,8 +32,13 @@ def test_default_deposit(tmp_path):
             k, v = line.split(None, 1)
             pk[k] = v.strip()
     # 40 particles make a deposit about one diameter high: the measuring slab (one diameter
-    # above the ground, two below the surface) may be empty, so only sanity is checked
+    # above the ground, two below the surface) may be empty, so only sanity is checked; the
+    # runner refuses such a deposit unless slabmin 0 asks for no check, and packing.dat and the
+    # summary still say whether the slab is empty
     assert 0.0 <= float(pk["phi"]) < 0.8
+    assert pk["slabmin"] == "0"
+    assert pk["slab_ok"] == ("1" if float(pk["slab_thickness"]) > 0 else "0")
+    assert ("WARNING: the measuring slab is empty" in text) == (pk["slab_ok"] == "0")
     for key in ("sigma_xx", "sigma_yy", "sigma_zz", "K0", "mean_normal_force",
                 "fabric_anisotropy_force", "a_n", "a_f"):
         assert math.isfinite(float(pk[key])), key
@@ -63,6 +70,9 @@ def test_default_deposit(tmp_path):
     edge = max(5.0, 4 * bmax + 0.4)
     assert float(pk["box_width"]) == pytest.approx(edge, rel=1e-12)
     assert dump_edge(lines) == pytest.approx(edge, rel=1e-12)
+    # the runner's depth check sizes the box as in.deposit does
+    settings = deposit_run.read_settings(str(out))
+    assert deposit_depth.box_width(settings) == pytest.approx(edge, rel=1e-12)
 
 
 def dump_edge(lines):
@@ -75,10 +85,11 @@ def test_deposit_in_a_box_of_given_width(tmp_path):
     """in.deposit's width sets the box's edge (a deeper deposit of the same N)"""
     out = tmp_path / "dep"
     run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "40", "--ketol", "1e-2",
-         "--out", str(out), "--quiet", "--no-image", "--no-plots", "--var", "width", "7.5"],
-        str(tmp_path), 600)
+         "--out", str(out), "--quiet", "--no-image", "--no-plots", "--var", "width", "7.5",
+         "--var", "slabmin", "0"], str(tmp_path), 600)
     lines = open(out / "deposit.dump").read().splitlines()
     assert dump_edge(lines) == pytest.approx(7.5, rel=1e-12)
+    assert deposit_depth.box_width(deposit_run.read_settings(str(out))) == 7.5
     assert "box_width 7.5\n" in open(out / "packing.dat").read()
 
 
@@ -94,7 +105,7 @@ def test_thin_particles_driven_through_the_ground_are_kept(tmp_path, seed):
     run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "40", "--eta", "3",
          "--zeta", "3", "--dr", "0.6", "--seed", str(seed), "--out", str(out), "--quiet",
          "--no-image", "--no-plots", "--var", "kn", "10", "--var", "K", "1", "--var", "dt",
-         "2e-3", "--var", "maxchunks", "4"], str(tmp_path), 600)
+         "2e-3", "--var", "maxchunks", "4", "--var", "slabmin", "0"], str(tmp_path), 600)
     log = open(out / "log.lammps").read()
     assert "particle centre(s) were driven through a flat wall during the last run" in log
     assert "ERROR" not in log

@@ -130,7 +130,7 @@ def test_deposit_not_at_rest_fails_its_job(tmp_path):
     """a deposit that runs out of chunks is not a result: its job fails, nothing reaches the
     results folder, and the log says why"""
     config = yaml.safe_load(open(TINY))
-    config["vars"] = {"maxchunks": 1, "chunk": 100}
+    config["vars"] = {"maxchunks": 1, "chunk": 100, "slabmin": 0}
     config["retries"] = 0
     short = tmp_path / "short.yaml"
     short.write_text(yaml.safe_dump(config))
