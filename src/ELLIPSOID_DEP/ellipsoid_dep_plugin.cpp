@@ -76,13 +76,13 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "compute", "contact/histo",
                  "histogram of contact-normal angles with +z",
                  (void *) &create_with_args<ComputeContactHisto, Compute>);
-  register_style(reg, lmp, handle, "compute", "unbalanced/force",
-                 "unbalanced force ratio: mean net force over mean contact force",
-                 (void *) &create_with_args<ComputeUnbalancedForce, Compute>);
   register_style(reg, lmp, handle, "compute", "force/histo",
                  "distribution of the normal contact forces, P(f/<f>)",
                  (void *) &create_with_args<ComputeForceHisto, Compute>);
   register_style(reg, lmp, handle, "compute", "orient/histo",
                  "histogram of principal-axis angles with +z",
                  (void *) &create_with_args<ComputeOrientHisto, Compute>);
+  register_style(reg, lmp, handle, "compute", "unbalanced/force",
+                 "unbalanced force ratio: mean net force over mean contact force",
+                 (void *) &create_with_args<ComputeUnbalancedForce, Compute>);
 }

@@ -336,9 +336,8 @@ bool PairGranularEllipsoid::law_of_pair(int i, int j, ForceLaw &law, std::string
 }
 
 /* ----------------------------------------------------------------------
-   shortest Hertz contact and damping times over the type pairs with atoms: the lightest
-   atoms, the flattest surfaces and the largest rotational compliances of each type, at the
-   impact speed (keyword, or twice the fastest atom)
+   shortest Hertz contact and damping times of the type pairs with atoms (per type the lightest
+   atom, flattest surface, largest rotational compliance; impact speed: keyword or 2 x fastest)
 ------------------------------------------------------------------------- */
 
 void PairGranularEllipsoid::update_contact_times()
@@ -354,8 +353,8 @@ void PairGranularEllipsoid::update_contact_times()
       std::string refusal;
       if (!law_of_pair(i, j, law, refusal)) continue;    // init_one reports it
       const double radius = effective_radius(scales.flattest_radius[i], scales.flattest_radius[j]);
-      const double mass = mi * mj / (mi + mj);
-      const double sliding = tangential_mass(mi, scales.compliance[i], mj, scales.compliance[j]);
+      const double mass = mi * mj / (mi + mj),
+                   sliding = tangential_mass(mi, scales.compliance[i], mj, scales.compliance[j]);
       times.add_contact(lmp, law, radius, mass, sliding, speed, fmt::format("types {} {}", i, j));
     }
   contact_time = times.contact_time;

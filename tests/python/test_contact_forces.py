@@ -248,8 +248,10 @@ def deposit(tmp_path_factory):
     with the atoms of each contact (property/local, the same neighbour pairs in the same
     order) on the state the outputs were measured on"""
     out = tmp_path_factory.mktemp("deposit")
+    # window 0: packing.dat's force measures of the last step (not window means), which the
+    # contacts of pair/local here are
     lmp = h.deposit_lammps(out, {"N": 150, "dr": 0.3, "maxchunks": 20, "image": 0,
-                                 "out": str(out)})
+                                 "out": str(out), "window": 0})
     pk = {}
     for line in open(out / "packing.dat"):
         if not line.startswith("#"):
@@ -353,7 +355,9 @@ def test_slab_stress_carries_the_weight(deposit):
     assert pk["sigma_zz"] == pytest.approx(virial[2, 2] / volume, rel=2e-5)
     assert pk["sigma_xx"] == pytest.approx(virial[0, 0] / volume, rel=2e-5)
     assert pk["sigma_yy"] == pytest.approx(virial[1, 1] / volume, rel=2e-5)
-    assert pk["K0"] == pytest.approx(pk["sigma_xx"] / pk["sigma_zz"], rel=2e-5)
+    # K0 from the mean horizontal stress (sigma_xx and sigma_yy differ by up to 16 %)
+    assert pk["K0"] == pytest.approx(0.5 * (pk["sigma_xx"] + pk["sigma_yy"]) / pk["sigma_zz"],
+                                     rel=2e-5)
 
     # force balance, exact: the contacts whose branches cross a plane z push the particles
     # with centres above it up by their weight less their net force (floor contacts all lie

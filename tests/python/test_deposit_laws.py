@@ -42,11 +42,11 @@ def test_every_law_pours_the_default_scene_without_loss(tmp_path, law, dr):
                                  "maxchunks": "1000", "ketol": "1e9", "flytol": "1e9",
                                  "unbtol": "1e9"})
     # (ketol, flytol and unbtol so large that the run stops after its first chunk: run on to
-    # t = 3)
+    # t = 3; 100 particles make no measuring slab, which is not the point here: its WARNING is expected)
     dt = lmp.extract_global("dt")
     ztop = lmp.extract_variable("pz1")
     steps = math.ceil(3.0 / dt) - lmp.extract_global("ntimestep")
-    lmp.command(f"run {steps}")
+    lmp.command(f"run {max(steps, 0)}")    # (the stress window may have run past t = 3)
     assert (math.sqrt(64 + 2 * ztop) - 8) < 2.2
     natoms = lmp.get_natoms()
     zmax = max(lmp.numpy.extract_atom("x")[:lmp.extract_global("nlocal"), 2])
@@ -70,4 +70,5 @@ def test_every_law_pours_the_default_scene_without_loss(tmp_path, law, dr):
     if tangential:
         assert float(tangential.group(1)) == pytest.approx(damping, rel=1e-5)
         assert 0.9 * damping < 0.06 * contact
-    assert not re.search(r"^WARNING", log, re.M), re.findall(r"^WARNING.*", log, re.M)
+    warnings = [w for w in re.findall(r"^WARNING.*", log, re.M) if "measuring slab" not in w]
+    assert not warnings, warnings
