@@ -160,9 +160,11 @@ def print_summary(out, settings, pk, nprocs, wall, more_notes):
     print("  coordination number Z = %.3f   without rattlers %.3f (%d rattlers)"
           % (pk["Z"], pk["Z_no_rattlers"], int(pk["rattlers"])))
     if "K0" in pk:
-        print("  stress of the slab: sigma_zz = %.4g, K0 = sigma_xx/sigma_zz = %.3f; "
-              "anisotropy a_n = %.3f (normals), a_f = %.3f (forces)"
-              % (pk["sigma_zz"], pk["K0"], pk["a_n"], pk["a_f"]))
+        print("  stress of the slab (mean over %d steps at rest, +- standard error): sigma_zz = "
+              "%.4g +- %.2g, K0 = (sigma_xx+sigma_yy)/(2 sigma_zz) = %.3f +- %.3f; anisotropy "
+              "a_n = %.3f (normals), a_f = %.3f (forces); unbalanced force %.2g"
+              % (pk.get("window_steps", 0), pk["sigma_zz"], pk.get("sigma_zz_se", 0.0), pk["K0"],
+                 pk.get("K0_se", 0.0), pk["a_n"], pk["a_f"], pk.get("unbalanced_force", 0.0)))
     if pk.get("slab_ok", 1) == 0:
         print("  WARNING: the measuring slab is empty or thinner than slabmin (slab_ok 0): phi, "
               "Z and the forces are not results")
