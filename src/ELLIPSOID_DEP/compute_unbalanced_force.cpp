@@ -70,6 +70,17 @@ ComputeUnbalancedForce::~ComputeUnbalancedForce()
 void ComputeUnbalancedForce::init()
 {
   contacts = ContactList::request(lmp, WHO);
+  find_walls();
+}
+
+/* ----------------------------------------------------------------------
+   the wall fixes by their IDs, at init and again at every tally: a fix deleted or defined
+   again since the run (unfix, then a library call between runs) is found anew or refused,
+   never read through a pointer kept from init()
+------------------------------------------------------------------------- */
+
+void ComputeUnbalancedForce::find_walls()
+{
   walls.clear();
   for (const auto &wall_id : wall_ids) {
     Fix *fix = modify->get_fix_by_id(wall_id);
@@ -113,6 +124,7 @@ void ComputeUnbalancedForce::compute_vector()
 void ComputeUnbalancedForce::tally()
 {
   const ContactList &list = ContactList::current(contacts, lmp, WHO);
+  find_walls();
   double sums[4] = {0.0, 0.0, 0.0, 0.0};    // |F_i|, particles, |f_c|, contacts
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;

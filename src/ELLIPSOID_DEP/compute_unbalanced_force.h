@@ -32,6 +32,7 @@ class ComputeUnbalancedForce : public Compute {
   std::vector<class Fix *> walls;
   const class ContactList *contacts;
 
+  void find_walls();
   void tally();
 };
 

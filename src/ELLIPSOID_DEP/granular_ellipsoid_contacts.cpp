@@ -36,12 +36,20 @@ void refuse_other_sub_styles(LAMMPS *lmp, const char *who)
 }
 }    // namespace
 
-ContactList *ContactList::request(LAMMPS *lmp, const char *who)
+namespace {
+// the pair hands out its list through Pair::extract: this file does not know the pair
+ContactList *pair_list(LAMMPS *lmp)
 {
-  // the pair hands out its list through Pair::extract: this file does not know the pair
   Pair *pair = lmp->force->pair_match("granular/ellipsoid", 1);
   int dim = 0;
-  auto *contacts = pair ? static_cast<ContactList *>(pair->extract(EXTRACT_NAME, dim)) : nullptr;
+  return pair ? static_cast<ContactList *>(pair->extract(ContactList::EXTRACT_NAME, dim))
+              : nullptr;
+}
+}    // namespace
+
+ContactList *ContactList::request(LAMMPS *lmp, const char *who)
+{
+  auto *contacts = pair_list(lmp);
   if (!contacts) lmp->error->all(FLERR, "{} requires pair style granular/ellipsoid", who);
   refuse_other_sub_styles(lmp, who);
   contacts->wanted = true;
@@ -51,6 +59,10 @@ ContactList *ContactList::request(LAMMPS *lmp, const char *who)
 const ContactList &ContactList::current(const ContactList *list, LAMMPS *lmp, const char *who)
 {
   if (!list) lmp->error->all(FLERR, "{} used before initialisation (do a run)", who);
+  // the pair of init() may have been replaced since (pair_style of another style between
+  // runs): compare the addresses only, the old list may be freed
+  if (pair_list(lmp) != list)
+    lmp->error->all(FLERR, "{}: the pair style changed since the last run (do a run)", who);
   if (list->step != lmp->update->ntimestep)
     lmp->error->all(FLERR,
                     "{}: the pair's contacts are not from the current step (invoke it on a step "

@@ -45,18 +45,26 @@ void SlabOption::check() const
     lmp->error->all(FLERR, "Compute {} needs zhi > zlo", name);
 }
 
-void SlabOption::init()
+// by its ID at every use, never a pointer kept from init(): the compute may have been deleted
+// or defined again since (uncompute, then a library call or a variable between runs)
+Compute *SlabOption::find() const
 {
-  if (!slab_id) return;
-  slab_compute = lmp->modify->get_compute_by_id(slab_id);
+  Compute *slab_compute = lmp->modify->get_compute_by_id(slab_id);
   if (!slab_compute) lmp->error->all(FLERR, "Compute {}: no compute with ID {}", name, slab_id);
   if (strcmp(slab_compute->style, "packing/ellipsoid") != 0 || !slab_compute->vector_flag ||
       slab_compute->size_vector < ZHI_ELEMENT)
     lmp->error->all(FLERR, "Compute {}: slab compute {} is not packing/ellipsoid", name, slab_id);
+  return slab_compute;
+}
+
+void SlabOption::init()
+{
+  if (slab_id) find();
 }
 
 SlabOption::Bounds SlabOption::bounds() const
 {
+  Compute *slab_compute = slab_id ? find() : nullptr;
   Bounds b{have_zlo ? zlo_user : -HUGE_VAL, have_zhi ? zhi_user : HUGE_VAL,
            have_zlo || have_zhi || slab_compute};
   if (slab_compute) {

@@ -32,7 +32,8 @@ class SlabOption {
   bool parse(const char *key, const char *value);
   // after all keywords: ERROR for slab with zlo/zhi, or zhi <= zlo
   void check() const;
-  // the compute's init(): finds the slab compute (ERROR when it is not packing/ellipsoid)
+  // the compute's init(): finds the slab compute (ERROR when it is missing or not
+  // packing/ellipsoid); bounds() finds it again by its ID
   void init();
   // the slab of this step (invokes the slab compute when it is not current)
   Bounds bounds() const;
@@ -43,7 +44,7 @@ class SlabOption {
   bool have_zlo = false, have_zhi = false;
   double zlo_user = 0.0, zhi_user = 0.0;
   char *slab_id = nullptr;
-  Compute *slab_compute = nullptr;
+  Compute *find() const;
 };
 
 // the bins keyword's value arg[iarg] of a histogram compute (name: its style, for the
