@@ -1,5 +1,5 @@
-"""Same results for compute packing/ellipsoid, contact/histo, force/histo, orient/histo on 1 and 2
-MPI ranks.
+"""Same results for compute packing/ellipsoid, contact/histo, force/histo, orient/histo,
+unbalanced/force on 1 and 2 MPI ranks.
 
 Run as `mpirun -np 2 python3 mpi_computes.py`; exits non-zero on failure.
 
@@ -37,8 +37,11 @@ compute cw all contact/histo bins 12 weight force
 compute cf all contact/histo bins 8 slab pa select center weight force
 compute fh all force/histo bins 10 max 4
 compute fs low force/histo bins 6 max 3 slab pa select center
+compute ub all unbalanced/force
+compute ug low unbalanced/force
 """
-VECTORS = ["pk", "pr", "pa", "pc", "ch", "cs", "cz", "ol", "os", "pg", "cg", "cw", "cf", "fh", "fs"]
+VECTORS = ["pk", "pr", "pa", "pc", "ch", "cs", "cz", "ol", "os", "pg", "cg", "cw", "cf", "fh", "fs",
+           "ub", "ug"]
 ARRAYS = ["ch", "cs", "cz", "ol", "os", "cg", "cw", "cf", "fh", "fs"]
 
 
