@@ -140,6 +140,28 @@ def test_wall_fix_defined_again_is_read_anew():
         lmp.close()
 
 
+def test_after_restart_defined_again_and_initialised_by_a_run(tmp_path):
+    """the computes keep no state: read_restart, the same definitions, and after run 0 the
+    same values as run 0 in the run that wrote the file; before that run, an ERROR"""
+    path = str(tmp_path / "stack.restart")
+    lines = STACK.splitlines()
+    fixes = "\n".join(line for line in lines if line.startswith(("fix ", "compute ")))
+    lmp = new_lammps()
+    try:
+        lmp.commands_string(STACK + OUTPUTS + f"run 3\nwrite_restart {path}\nrun 0\n")
+        written = np.array(list(lmp.last_thermo().values())[1:], dtype=float)
+        lmp.close()
+        lmp = new_lammps()
+        lmp.commands_string(f"read_restart {path}\ncomm_modify vel yes\n{fixes}\n" + OUTPUTS)
+        with pytest.raises(Exception, match="before initialisation"):
+            vector(lmp, "unb")
+        lmp.command("run 0")
+        np.testing.assert_allclose(np.array(list(lmp.last_thermo().values())[1:], dtype=float),
+                                   written, rtol=1e-12, atol=1e-14)
+    finally:
+        lmp.close()
+
+
 # every global output of the six computes; under lj units thermo's default norm yes divides
 # extensive outputs by the atom count (3 here), so equal columns under norm yes and no prove
 # each output flagged intensive
