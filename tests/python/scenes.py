@@ -161,3 +161,29 @@ def mid_pour_continuation():
         "thermo_style custom step atoms f_p c_pk[1] c_pk[2]",
         "thermo 500",
     ]
+
+
+def floor_stack(contacts="contacts", walls="wall floor"):
+    """Three ellipsoids above a floor wall (fix floor): A on the floor, B tilted on A, C in the
+    air; compute unb all unbalanced/force (test_unbalanced_force.py's oracle scene)."""
+    return f"""
+units lj
+atom_style ellipsoid
+atom_modify map array
+boundary p p f
+comm_modify vel yes
+region box block 0 4 0 4 0 6
+create_box 1 box
+create_atoms 1 single 2.0 2.0 0.24
+create_atoms 1 single 2.1 2.05 0.70
+create_atoms 1 single 1.0 1.0 4.0
+set type 1 shape 1.0 0.8 0.5
+set type 1 density 1.0
+set atom 2 quat 1 1 0 30
+pair_style granular/ellipsoid
+pair_coeff * * hertz 1.0e4 50.0 tangential history 2.0e3 0.5
+fix floor all wall/gran/ellipsoid hertz 1.0e4 50.0 tangential history 2.0e3 0.5 zplane 0.0 NULL {contacts}
+fix grav all gravity 1.0 vector 0 0 -1
+compute unb all unbalanced/force {walls}
+timestep 1.0e-4
+"""

@@ -11,6 +11,7 @@ import pytest
 
 from conftest import new_lammps
 from placed_scenes import array, build_system, oblate_stacks, vector
+from scenes import floor_stack
 
 from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_SCALAR
 
@@ -90,28 +91,7 @@ def test_replaced_pair_style_is_an_error_between_runs():
         lmp.close()
 
 
-# a stack on a floor wall: A on the floor, B on A, C in the air (test_unbalanced_force.py)
-STACK = """
-units lj
-atom_style ellipsoid
-atom_modify map array
-boundary p p f
-comm_modify vel yes
-region box block 0 4 0 4 0 6
-create_box 1 box
-create_atoms 1 single 2.0 2.0 0.24
-create_atoms 1 single 2.1 2.05 0.70
-create_atoms 1 single 1.0 1.0 4.0
-set type 1 shape 1.0 0.8 0.5
-set type 1 density 1.0
-set atom 2 quat 1 1 0 30
-pair_style granular/ellipsoid
-pair_coeff * * hertz 1.0e4 50.0 tangential history 2.0e3 0.5
-fix floor all wall/gran/ellipsoid hertz 1.0e4 50.0 tangential history 2.0e3 0.5 zplane 0.0 NULL contacts
-fix grav all gravity 1.0 vector 0 0 -1
-compute unb all unbalanced/force wall floor
-timestep 1.0e-4
-"""
+STACK = floor_stack()
 
 
 def test_deleted_wall_fix_is_an_error_between_runs():

@@ -12,34 +12,13 @@ import numpy as np
 import pytest
 
 from conftest import new_lammps
+from scenes import floor_stack
 
-STACK = """
-units lj
-atom_style ellipsoid
-atom_modify map array
-boundary p p f
-comm_modify vel yes
-region box block 0 4 0 4 0 6
-create_box 1 box
-create_atoms 1 single 2.0 2.0 0.24
-create_atoms 1 single 2.1 2.05 0.70
-create_atoms 1 single 1.0 1.0 4.0
-set type 1 shape 1.0 0.8 0.5
-set type 1 density 1.0
-set atom 2 quat 1 1 0 30
-pair_style granular/ellipsoid
-pair_coeff * * hertz 1.0e4 50.0 tangential history 2.0e3 0.5
-fix floor all wall/gran/ellipsoid hertz 1.0e4 50.0 tangential history 2.0e3 0.5 zplane 0.0 NULL {contacts}
-fix grav all gravity 1.0 vector 0 0 -1
-compute unb all unbalanced/force {walls}
-thermo_style custom step c_unb c_unb[*]
-timestep 1.0e-4
-run 3
-"""
 
 
 def stack(lmp, contacts="contacts", walls="wall floor"):
-    lmp.commands_string(STACK.format(contacts=contacts, walls=walls))
+    lmp.commands_string(floor_stack(contacts, walls) +
+                        "thermo_style custom step c_unb c_unb[*]\nrun 3\n")
 
 
 def test_ratio_of_the_stack_equals_the_oracle():
@@ -72,7 +51,7 @@ def test_without_the_wall_only_the_pair_contact_counts():
 
 def test_no_contact_is_infinite_and_no_particle_zero():
     lmp = new_lammps()
-    lmp.commands_string(STACK.format(contacts="contacts", walls="wall floor")
+    lmp.commands_string((floor_stack() + "thermo_style custom step c_unb c_unb[*]\nrun 3\n")
                         .replace("create_atoms 1 single 2.0 2.0 0.24\n", "")
                         .replace("create_atoms 1 single 2.1 2.05 0.70\n", "")
                         .replace("set atom 2 quat 1 1 0 30\n", ""))
