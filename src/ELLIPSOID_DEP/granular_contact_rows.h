@@ -1,6 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
    ELLIPSOID_DEP: the history rows of the candidate pairs of pair granular/ellipsoid in one
-   contiguous array, in the order the force loop visits them (PROTOTYPE, issue 32 item 2).
+   contiguous array, in the order the force loop visits them.
 
    fix NEIGH_HISTORY keeps a row per neighbour; the loop over candidates visits them with gaps
    (the pairs set aside). Here the candidates' rows are copied into the pair's own array when

@@ -108,7 +108,7 @@ def shapeless_deposit(pair=True):
     """One ellipsoid on a wall; fix deposit adds plain atoms (no shape, the first, atom 2, at
     step 1) that fix nve/asphere integrates without a check: under pair granular/ellipsoid and
     the wall (pair=True), or the wall alone. Unchecked, the pair read outside its arrays, both
-    ignored the new atoms, and the run ended in lost atoms (issue 27, item 6)."""
+    ignored the new atoms, and the run ended in lost atoms."""
     return f"""
 units lj
 atom_style ellipsoid

@@ -364,7 +364,7 @@ def test_stale_contacts_error():
 
 
 # ----------------------------------------------------------------------------------------------
-# pair_style hybrid: the computes read granular/ellipsoid's contacts only (issue 27, item 5)
+# pair_style hybrid: the computes read granular/ellipsoid's contacts only
 
 # two overlapping spheres of type 1 and two of type 2 (every atom has a shape, as
 # granular/ellipsoid requires), apart from each other

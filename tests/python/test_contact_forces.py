@@ -1,5 +1,5 @@
 """The force measures (compute contact/histo weight force, compute force/histo, the slab
-stress of examples/deposit/in.deposit) against independent results (issue 29, item 1).
+stress of examples/deposit/in.deposit) against independent results.
 
 (b) Known forces: isolated pairs of identical ellipsoids (same orientation, one displaced
     along a body axis) and of spheres, placed with overlaps xi (checked with the gap function

@@ -1,4 +1,4 @@
-"""The Hertz contact time and the damping time in every LAMMPS unit style (issue 27, item 3).
+"""The Hertz contact time and the damping time in every LAMMPS unit style.
 
 Two glass spheres of radius 1 mm (E 6.3e10 Pa, nu 0.23, e 0.9, 2500 kg/m^3), meeting at
 1 m/s, and one of them against a wall (pair and wall impact_velocity 1 m/s), at a time step of

@@ -8,7 +8,7 @@ spurious minimum about a needle's length deep: lost atoms in a box 4 wide under 
 long, the temperature of a settled deposit from 0.05 to 8734 in one step after compress. The
 pour also inserted overlapping needles there (it tested the nearest image only).
 
-Checks (issue 27, items 1 and 2): the narrow box keeps every atom and its contacts are those a
+Checks: the narrow box keeps every atom and its contacts are those a
 cold evaluation finds (a restart, which carries the rows, against a data file, which does not,
 and an independent separating-axis check); no insertion overlaps any image; compress yes gives
 the temperature of compress no. Each failed before the fix.

@@ -276,7 +276,7 @@ def test_restart_continues_pour(tmp_path):
     assert np.allclose(full["semi"], cont["semi"], rtol=1e-14, atol=0)
 
 
-# ---- the time step against the particles to come (issue 27, item 4) -------------------------
+# ---- the time step against the particles to come ---------------------------------------------
 # The pair's run-start check sees the atoms present; into an empty box the pour checks its own
 # particles: the lightest (size rmin) with the flattest surface, against each other and the
 # wall, at the speed of a fall from the region's top to the box's bottom plus vel.

@@ -164,7 +164,7 @@ def test_write_data_read_data_keeps_shapes_and_orientations(runs):
     np.testing.assert_allclose(b["mass"], a["mass"], rtol=1e-15, atol=0)
 
 
-# ---- a pour re-specified after read_restart must be the pour that was written (issue 27, 7) ---
+# ---- a pour re-specified after read_restart must be the pour that was written ----------------
 # The restart record holds the arguments; another seed, N, size distribution, shape, vol,
 # region (or any other argument) is an ERROR naming it, instead of a silent mix of two pours.
 

@@ -1,4 +1,4 @@
-"""fix wall/gran/region/ellipsoid: bad input gets an ERROR that names it (issue 30, item 7),
+"""fix wall/gran/region/ellipsoid: bad input gets an ERROR that names it,
 a wall that starts inside particles a WARNING that says how many (at its first run), and the wall contacts'
 history and the region's motion survive write_restart/read_restart."""
 import re
