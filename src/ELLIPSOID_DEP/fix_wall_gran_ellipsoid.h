@@ -84,7 +84,8 @@ class FixWallGranEllipsoid : public Fix {
     int dim = -1;
     double amplitude = 0.0, omega = 0.0, vshear = 0.0;
     double time_origin = 0.0;    // the simulation time the fix was defined at
-    bool stress = false;          // servo target: a stress (times the box's cross-section)
+    bool stress = false;          // servo target: a stress (times area)
+    double area = 0.0;            // servo stress: the area it acts on (0: the box's cross-section)
     double target = 0.0, gain = 0.0, vmax = 0.0;
     double force = 0.0;           // servo: its measure of the particles' push on the wall
     double filter_time = 0.0;     // servo: the measure's low-pass time constant (0: none)

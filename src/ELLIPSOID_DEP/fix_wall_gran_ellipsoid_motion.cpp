@@ -53,7 +53,7 @@ int FixWallGranEllipsoid::parse_motion(int iarg, int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   servo force|stress target gain G vmax V [filter T]: the words used
+   servo force|stress target gain G vmax V [filter T] [area A]: the words used
 ------------------------------------------------------------------------- */
 
 int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
@@ -82,23 +82,42 @@ int FixWallGranEllipsoid::parse_servo(int iarg, int narg, char **arg)
     error->all(FLERR, iarg + 4, "Fix wall/gran/ellipsoid servo: gain must be > 0");
   if (!(motion.vmax > 0.0))
     error->all(FLERR, iarg + 6, "Fix wall/gran/ellipsoid servo: vmax must be > 0");
-  if (iarg + 7 >= narg || std::string(arg[iarg + 7]) != "filter") return 7;
-  if (iarg + 8 >= narg)
-    utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid servo filter", error);
-  motion.filter_time = utils::numeric(FLERR, arg[iarg + 8], false, lmp);
-  if (!(motion.filter_time >= 0.0))
-    error->all(FLERR, iarg + 8, "Fix wall/gran/ellipsoid servo: filter time must be >= 0");
-  return 9;
+  int used = 7;    // then the optional words, in any order
+  while (iarg + used < narg) {
+    const std::string word = arg[iarg + used];
+    if (word != "filter" && word != "area") break;
+    if (iarg + used + 1 >= narg)
+      utils::missing_cmd_args(FLERR, "fix wall/gran/ellipsoid servo " + word, error);
+    const double value = utils::numeric(FLERR, arg[iarg + used + 1], false, lmp);
+    if (word == "filter") {
+      if (!(value >= 0.0))
+        error->all(FLERR, iarg + used + 1, "Fix wall/gran/ellipsoid servo: filter time must be >= 0");
+      motion.filter_time = value;
+    } else {
+      if (!motion.stress)
+        error->all(FLERR, iarg + used,
+                   "Fix wall/gran/ellipsoid servo: area needs a stress target (servo stress ...)");
+      if (!(value > 0.0))
+        error->all(FLERR, iarg + used + 1, "Fix wall/gran/ellipsoid servo: area must be > 0");
+      motion.area = value;
+    }
+    used += 2;
+  }
+  return used;
 }
 
-// the servo's target force: a stress acts on the box's cross-section normal to the wall;
-// LAMMPS's pressure units are force / area times nktv2p (not 1 in real, metal, electron)
+// the servo's target force: a stress acts on the given area, or else on the box's
+// cross-section normal to the wall; LAMMPS's pressure units are force / area times nktv2p
+// (not 1 in real, metal, electron)
 double FixWallGranEllipsoid::servo_target() const
 {
   if (!motion.stress) return motion.target;
-  double area = 1.0;
-  for (int d = 0; d < 3; d++)
-    if (walls[0].normal[d] == 0.0) area *= domain->prd[d];
+  double area = motion.area;
+  if (area == 0.0) {
+    area = 1.0;
+    for (int d = 0; d < 3; d++)
+      if (walls[0].normal[d] == 0.0) area *= domain->prd[d];
+  }
   return motion.target * area / force->nktv2p;
 }
 

@@ -123,6 +123,9 @@ def test_shearing_floor_drags_a_resting_sphere(vshear):
     ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 1 wiggle z 0.1 1", "one of wiggle, shear and servo"),
     ("zplane 0 1.3 servo force 1 gain 0.1 vmax 1", "servo moves one wall"),
     ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 1 filter -1", "filter time must be >= 0"),
+    ("zplane NULL 1.3 servo stress 1 gain 0.1 vmax 1 area 0", "area must be > 0"),
+    ("zplane NULL 1.3 servo force 1 gain 0.1 vmax 1 area 2", "area needs a stress target"),
+    ("zplane NULL 1.3 servo stress 1 gain 0.1 vmax 1 area", "Illegal fix wall/gran/ellipsoid servo area"),
 ])
 def test_bad_motion_is_refused(args, pattern):
     lmp = new_lammps()

@@ -66,6 +66,39 @@ def test_servo_lid_reaches_the_target(kind, target):
     assert z_sphere == pytest.approx(RADIUS - xi, rel=1e-6)
 
 
+@pytest.mark.parametrize("words", ["area 0.8", "filter 1e-4 area 0.8", "area 0.8 filter 1e-4"])
+def test_servo_stress_on_a_given_area(words):
+    """`area A`: the stress acts on A (a piston in a cylinder), not on the box's 2 x 2
+    cross-section; with or after the filter."""
+    lmp = sphere_under_lid(f"servo stress {TARGET / 0.8} gain 0.05 vmax 0.5 {words}")
+    lmp.command("run 12000 post no")
+    force = lid_force(lmp)
+    lmp.close()
+    assert force == pytest.approx(TARGET, rel=1e-6)
+
+
+def test_three_servo_walls_press_a_sphere_into_a_corner():
+    """A triaxial box: three fixes, each with one servo wall (x, y, z hi) against fixed lo
+    walls, reach their own targets at once; the sphere rests where each axis's Hertz contacts
+    carry its target."""
+    targets = (1.0, 2.0, 3.0)
+    lmp = new_lammps()
+    lmp.commands_string(scenes.spheres_in_box("ellipsoid", (3, 3, 3), [(1.0, 1.0, 1.0)], RADIUS))
+    lmp.command("change_box all boundary f f f")
+    for d, (dim, target) in enumerate(zip("xyz", targets)):
+        lmp.commands_string(f"""
+            fix lo{dim} all wall/gran/ellipsoid {LAW} {dim}plane 0.5 NULL
+            fix hi{dim} all wall/gran/ellipsoid {LAW} {dim}plane NULL 1.55 servo force {target} gain 0.05 vmax 0.5
+            """)
+    lmp.commands_string("fix i all nve/ellipsoid\ntimestep 1e-4\nrun 15000 post no")
+    pushed = [lmp.extract_fix(f"hi{dim}", 0, 1, d) for d, dim in enumerate("xyz")]
+    x = lmp.numpy.extract_atom("x")[0].copy()
+    lmp.close()
+    assert pushed == pytest.approx(targets, rel=1e-6)
+    for d, target in enumerate(targets):
+        assert x[d] == pytest.approx(0.5 + RADIUS - hertz_overlap(target, RADIUS), rel=1e-6)
+
+
 @pytest.mark.parametrize("servo", ["servo force 2.0 gain 0.05 vmax 0.5",
                                    "servo force 2.0 gain 0.05 vmax 0.5 filter 1e-3"])
 def test_servo_restart_continues_exactly(tmp_path, servo):
