@@ -216,6 +216,7 @@ def write_start_fields(case, direction, periodic):
 
 
 RESIDUAL = re.compile(r"Solving for (Ux|Uy|Uz|p), Initial residual = ([0-9.eE+-]+)")
+CPU_TIME = re.compile(r"^ExecutionTime = ([0-9.eE+-]+) s")    # simpleFoam's (rank 0's) CPU
 
 
 def solve_name(label, key):
@@ -240,8 +241,12 @@ class ResidualMonitor:
         self.stopped = False
         self.process = None
         self.last_write = None
+        self.cpu_seconds = 0.0
 
     def __call__(self, line):
+        cpu = CPU_TIME.match(line)
+        if cpu:
+            self.cpu_seconds = float(cpu.group(1))
         if line.startswith("Time = "):
             if not self.converged and self.residuals.get(self.driven, 1.0) <= TOLERANCE:
                 self.converged = True
@@ -286,7 +291,7 @@ def read_velocity(case, ncells):
 
 
 def solve(case, key, ncells, total, parallel, progress, label):
-    """one direction on the mesh in case: (k, residuals, iterations)"""
+    """one direction on the mesh in case: (k, residuals, iterations, simpleFoam's CPU s)"""
     a = DIRECTIONS[key]
     for d in os.listdir(case):
         if d.startswith("processor") or (re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"):
@@ -306,7 +311,7 @@ def solve(case, key, ncells, total, parallel, progress, label):
     if not monitor.converged:
         raise FlowError("flow %s did not converge in %d iterations (residuals %s)"
                         % (key, iterations, residuals))
-    return NU * u[:, a].sum() / total / BODY_FORCE, residuals, iterations
+    return NU * u[:, a].sum() / total / BODY_FORCE, residuals, iterations, monitor.cpu_seconds
 
 
 def permeability(solid, spacing, directions=("xx", "yy", "zz"), progress=None, workdir=None,
@@ -321,7 +326,7 @@ def permeability(solid, spacing, directions=("xx", "yy", "zz"), progress=None, w
     result = {"voxel_spacing": list(map(float, spacing)), "image_xyz": list(solid.shape),
               "periodic": list(periodic), "body_force": BODY_FORCE, "nu": NU,
               "tolerance": TOLERANCE, "cells": {}, "ranks": {}, "residuals": {},
-              "iterations": {}, "seconds": {}}
+              "iterations": {}, "seconds": {}, "solver_cpu_seconds": {}}
     meshes = {}    # mirrored axis (None: the image as it is) -> directions solved on it
     for key in directions:
         a = DIRECTIONS[key]
@@ -338,14 +343,15 @@ def permeability(solid, spacing, directions=("xx", "yy", "zz"), progress=None, w
             parallel = ncells > PARALLEL_CELLS
             for key in keys:
                 write_start_fields(case, DIRECTIONS[key], cyclic)
-                k, residuals, iterations = solve(case, key, ncells, image.size, parallel,
-                                                 progress, label)
+                k, residuals, iterations, cpu = solve(case, key, ncells, image.size,
+                                                      parallel, progress, label)
                 result[key] = k
                 result["cells"][key] = ncells
                 result["ranks"][key] = 2 if parallel else 1
                 result["residuals"][key] = residuals
                 result["iterations"][key] = iterations
-                result["seconds"][key] = time.time() - t0
+                result["seconds"][key] = time.time() - t0    # with the meshing
+                result["solver_cpu_seconds"][key] = cpu
                 progress("%s: k = %.5g after %d iterations (%.0f s)" % (
                     solve_name(label, key), k, iterations, result["seconds"][key]))
                 t0 = time.time()

@@ -154,7 +154,8 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
         r = {key: k[key] / d ** 2 for key in directions}
         r.update({"voxel": voxel, "voxels_per_d": d / voxel, "image_xyz": k["image_xyz"],
                   "porosity_voxel": float(1.0 - solid.mean()), "filled_pore_fraction": filled})
-        for key in ("cells", "iterations", "residuals", "seconds", "ranks"):
+        for key in ("cells", "iterations", "residuals", "seconds", "solver_cpu_seconds",
+                    "ranks"):
             r[key] = k[key]
         r["anisotropy_xx_zz"] = anisotropy(r)
         resolutions.append(r)
