@@ -2,11 +2,14 @@
 """Permeability of deposits along the study's lines from the flow solve (doc/howto_pores.md).
 
     ./ellipsoid-dep python tools/pore_flow_lines.py --out results/flow RUN_DIR [RUN_DIR ...]
-        [--flow-voxel-per-d N] [--flow-box L] [--directions xx,zz]
+        [--flow-voxels-per-d N1,N2,N3] [--flow-box L] [--directions xx,zz]
 
 For each run folder (deposit.dump + packing.dat, read only) the flow solve of
 pore_flow_domain.flow_permeability at its defaults (a box of side 5 d cut out of the slab, three
-voxels, extrapolated to a vanishing voxel; or one voxel d / N) writes OUT/<folder name>.json
+voxels, extrapolated to a vanishing voxel), or at the voxels d / N given (three or more:
+extrapolated; one: that voxel alone; flat shapes at the default voxels, fractions of the
+smallest semi-axis, need (eta zeta^2)^(1/3) times more voxels per d than spheres in each
+direction) writes OUT/<folder name>.json
 (skipped when it exists: one command per deposit, and reruns only add what is missing); then
 OUT/flow_lines.csv (one row per deposit: eta, zeta, seed, porosity, k_xx, k_zz in d^2 with
 their errors, the anisotropy, the ratio to Kozeny-Carman, the finest voxel's cells, the
@@ -28,7 +31,7 @@ import pore_surface  # noqa: E402
 import pores  # noqa: E402
 
 
-def solve_folder(folder, out, voxel_per_d, directions, side):
+def solve_folder(folder, out, voxels_per_d, directions, side):
     path = os.path.join(out, os.path.basename(os.path.normpath(folder)) + ".json")
     if os.path.exists(path):
         with open(path) as f:
@@ -40,7 +43,7 @@ def solve_folder(folder, out, voxel_per_d, directions, side):
     d = pore_flow_domain.volume_diameter(particles)
     t0 = time.time()
     k = pore_flow_domain.flow_permeability(
-        particles, box, zlo, zhi, None if voxel_per_d is None else [d / voxel_per_d], progress,
+        particles, box, zlo, zhi, voxels_per_d and [d / n for n in voxels_per_d], progress,
         directions=directions, side=side)
     v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
     solid = (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum()
@@ -104,17 +107,27 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dirs", nargs="+", metavar="RUN_DIR")
     ap.add_argument("--out", required=True, help="folder of the small outputs")
-    ap.add_argument("--flow-voxel-per-d", type=float, default=None,
-                    help="one voxel d / N instead of the default voxels and extrapolation")
+    ap.add_argument("--flow-voxels-per-d", default=None, metavar="N1,N2,N3",
+                    help="voxels d / N instead of the default (fractions of the smallest "
+                         "semi-axis); one N: that voxel alone, no extrapolation")
     ap.add_argument("--flow-box", type=float, default=pore_flow_domain.FLOW_BOX, metavar="L",
                     help="side of the cut box in d (0: the whole slab)")
     ap.add_argument("--directions", default="xx,zz")
     args = ap.parse_args(argv)
+    per_d = None
+    if args.flow_voxels_per_d:
+        try:
+            per_d = [float(n) for n in args.flow_voxels_per_d.split(",")]
+        except ValueError:
+            per_d = []
+        if len(per_d) == 2 or not per_d or not all(n > 0 for n in per_d):
+            ap.error("--flow-voxels-per-d %s: one N or three or more, all > 0"
+                     % args.flow_voxels_per_d)
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for folder in args.run_dirs:
         try:
-            rows.append(solve_folder(folder, args.out, args.flow_voxel_per_d,
+            rows.append(solve_folder(folder, args.out, per_d,
                                      tuple(args.directions.split(",")), args.flow_box))
         except (ValueError, RuntimeError, OSError) as e:    # RuntimeError: pore_flow.FlowError
             print("pore_flow_lines: %s skipped: %s" % (folder, e), file=sys.stderr)
