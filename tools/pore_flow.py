@@ -6,8 +6,9 @@ solid[i, j, k] is True in the solid; periodic says which axes of the image are p
 deposit's slab: x and y). Along an axis that is not, the image is cut out of something larger:
 its two faces are symmetry planes (slip walls: the same as continuing the image by its mirror
 image) for flow across the other axes, and for flow along that axis the image is followed by
-its mirror image along it, which makes the domain periodic there at twice the cells. Mesh: blockMesh
-makes one hexahedral cell per voxel (cyclic patches on the periodic faces); subsetMesh keeps
+its mirror image along it, which makes the domain periodic there at twice the cells. Mesh:
+blockMesh makes one hexahedral cell per voxel (cyclic patches on the periodic faces, symmetry
+planes on the others); subsetMesh keeps
 the pore voxels and puts the faces it exposes into the wall patch "walls" (the stair-step
 surface of the particles). Flow: simpleFoam (laminar, SIMPLEC) driven by a uniform body force g
 along x, y, z in turn at a Reynolds number far below 1. Darcy's law gives k_ii = nu <u_i> / g
@@ -162,7 +163,8 @@ relaxationFactors { equations { U 0.9; ".*" 0.9; } }
 
 
 def field(cls, name, dims, value, walls, periodic):
-    patches = "".join('    %s { type %s; }\n' % (p, "cyclic" if periodic[axis] else "symmetryPlane")
+    patches = "".join('    %s { type %s; }\n'
+                      % (p, "cyclic" if periodic[axis] else "symmetryPlane")
                       for axis, pair in enumerate(AXIS_PATCHES) for p in pair)
     return (header(cls, name) + "dimensions %s;\ninternalField uniform %s;\n"
             "boundaryField\n{\n%s    walls { %s }\n}\n" % (dims, value, patches, walls))

@@ -65,7 +65,8 @@ def table(rows):
         finest = k["resolutions"][-1]
         kxx = 0.5 * (k["xx"] + k["yy"]) if "yy" in k else k["xx"]
         out.append({"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"],
-                    "porosity": r["porosity"], "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
+                    "porosity": r["porosity"],
+                    "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
                     "k_yy": k.get("yy", ""), "k_zz": k["zz"], "k_zz_error": k.get("zz_error", ""),
                     "anisotropy": k["anisotropy_xx_zz"],
                     "anisotropy_error": k.get("anisotropy_xx_zz_error", ""),
@@ -74,7 +75,8 @@ def table(rows):
                     "voxels_per_d": " ".join("%.3g" % q["voxels_per_d"]
                                              for q in k["resolutions"]),
                     "cells_xx": finest["cells"]["xx"], "cells_zz": finest["cells"]["zz"],
-                    "iterations": " ".join("%s:%d" % kv for kv in sorted(finest["iterations"].items())),
+                    "iterations": " ".join("%s:%d" % kv
+                                           for kv in sorted(finest["iterations"].items())),
                     "seconds": round(r["wall_seconds"])})
     return sorted(out, key=lambda r: (r["eta"], r["zeta"], r["seed"]))
 
