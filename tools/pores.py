@@ -351,10 +351,10 @@ def report(ap, args):
 
 def print_flow(k, porosity):
     dom = k["domain"]
-    print("  flow domain         %s %s d (porosity of the slab %.4f)" % (
+    print("  flow domain         %s %s d (the slab's exact porosity %.4f)" % (
         dom["kind"], " x ".join("%.3g" % s for s in dom["sides_d"]), porosity))
     for r in k["resolutions"]:
-        print("  flow at d/%-5.3g     xx %.4g  yy %.4g  zz %.4g  xx/zz %.4f  (porosity %.4f, "
+        print("  flow at d/%-5.3g     xx %.4g  yy %.4g  zz %.4g  (xx+yy)/2zz %.4f  (pores %.4f, "
               "%d + %d cells)" % (r["voxels_per_d"], r["xx"], r["yy"], r["zz"],
                                   r["anisotropy_xx_zz"], r["porosity_voxel"], r["cells"]["xx"],
                                   r["cells"]["zz"]))
