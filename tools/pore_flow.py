@@ -1,12 +1,14 @@
 """Permeability of a voxel image from a Stokes-flow solve with OpenFOAM (doc/howto_pores.md).
 
-    permeability(solid, spacing) -> {"xx", "yy", "zz", "residuals", "cells", ...}
+    permeability(solid, spacing, periodic=(True, True, False)) -> {"xx", "yy", "zz", ...}
 
-solid[i, j, k] (x, y periodic) is True in the solid; the slab is not periodic in z. For flow
-along x and y the slab's planes are symmetry planes (slip walls: the same as continuing the
-slab by its mirror image). For flow along z the image is mirrored in z (the slab followed by
-its mirror image), which makes the domain periodic in z at twice the cells. Mesh: blockMesh
-makes one hexahedral cell per voxel (cyclic patches on the periodic faces); subsetMesh keeps
+solid[i, j, k] is True in the solid; periodic says which axes of the image are periodic (a
+deposit's slab: x and y). Along an axis that is not, the image is cut out of something larger:
+its two faces are symmetry planes (slip walls: the same as continuing the image by its mirror
+image) for flow across the other axes, and for flow along that axis the image is followed by
+its mirror image along it, which makes the domain periodic there at twice the cells. Mesh:
+blockMesh makes one hexahedral cell per voxel (cyclic patches on the periodic faces, symmetry
+planes on the others); subsetMesh keeps
 the pore voxels and puts the faces it exposes into the wall patch "walls" (the stair-step
 surface of the particles). Flow: simpleFoam (laminar, SIMPLEC) driven by a uniform body force g
 along x, y, z in turn at a Reynolds number far below 1. Darcy's law gives k_ii = nu <u_i> / g
@@ -32,6 +34,7 @@ WRITE_EVERY = 10         # iterations between writes of the fields (the last one
 PARALLEL_CELLS = 300_000  # decomposePar onto 2 ranks above this many cells
 DIRECTIONS = {"xx": 0, "yy": 1, "zz": 2}
 NICENESS = 10            # the machine is shared: every OpenFOAM utility runs at this niceness
+PROGRESS_SECONDS = 10.0  # between the progress lines of a solve (the first comes at once)
 
 
 class FlowError(RuntimeError):
@@ -85,7 +88,10 @@ def write(case, rel, text):
         f.write(text)
 
 
-def block_mesh_dict(shape, lengths, periodic_z):
+AXIS_PATCHES = (("left", "right"), ("front", "back"), ("bottom", "top"))
+
+
+def block_mesh_dict(shape, lengths, periodic):
     nx, ny, nz = shape
     lx, ly, lz = lengths
     v = [(0, 0, 0), (lx, 0, 0), (lx, ly, 0), (0, ly, 0),
@@ -94,9 +100,9 @@ def block_mesh_dict(shape, lengths, periodic_z):
              ("front", "(0 1 5 4)", "back", "(3 7 6 2)"),
              ("bottom", "(0 3 2 1)", "top", "(4 5 6 7)"))
     patches = ""
-    for a, fa, b, fb in pairs:
+    for axis, (a, fa, b, fb) in enumerate(pairs):
         for me, faces, other in ((a, fa, b), (b, fb, a)):
-            if a == "bottom" and not periodic_z:
+            if not periodic[axis]:
                 kind = "symmetryPlane;"
             else:
                 kind = "cyclic;\n        neighbourPatch %s;" % other
@@ -156,26 +162,25 @@ relaxationFactors { equations { U 0.9; ".*" 0.9; } }
 """
 
 
-def field(cls, name, dims, value, walls, periodic_z):
-    z = "cyclic" if periodic_z else "symmetryPlane"
-    patches = "".join('    %s { type %s; }\n' % (p, "cyclic" if p in ("left", "right", "front",
-                                                                        "back") else z)
-                      for p in ("left", "right", "front", "back", "bottom", "top"))
+def field(cls, name, dims, value, walls, periodic):
+    patches = "".join('    %s { type %s; }\n'
+                      % (p, "cyclic" if periodic[axis] else "symmetryPlane")
+                      for axis, pair in enumerate(AXIS_PATCHES) for p in pair)
     return (header(cls, name) + "dimensions %s;\ninternalField uniform %s;\n"
             "boundaryField\n{\n%s    walls { %s }\n}\n" % (dims, value, patches, walls))
 
 
-def mirrored(solid):
-    """the slab followed by its mirror image in z: periodic in z"""
-    return np.concatenate([solid, solid[:, :, ::-1]], axis=2)
+def mirrored(solid, axis):
+    """the image followed by its mirror image along axis: periodic along it"""
+    return np.concatenate([solid, np.flip(solid, axis)], axis=axis)
 
 
-def setup_case(case, solid, spacing, periodic_z, progress):
-    """the mesh of the pore voxels of the image (z faces cyclic or symmetry planes) and the
-    case files; returns the number of cells"""
+def setup_case(case, solid, spacing, periodic, progress):
+    """the mesh of the pore voxels of the image (faces cyclic where periodic, else symmetry
+    planes) and the case files; returns the number of cells"""
     shape = solid.shape
     lengths = [n * h for n, h in zip(shape, spacing)]
-    write(case, "system/blockMeshDict", block_mesh_dict(shape, lengths, periodic_z))
+    write(case, "system/blockMeshDict", block_mesh_dict(shape, lengths, periodic))
     write(case, "system/controlDict", header("dictionary", "controlDict")
           + CONTROL % (MAX_ITERATIONS, WRITE_EVERY))
     write(case, "system/fvSchemes", header("dictionary", "fvSchemes") + SCHEMES)
@@ -198,14 +203,14 @@ def setup_case(case, solid, spacing, periodic_z, progress):
     return len(fluid)
 
 
-def write_start_fields(case, direction, periodic_z):
+def write_start_fields(case, direction, periodic):
     g = [0.0, 0.0, 0.0]
     g[direction] = BODY_FORCE
     shutil.rmtree(os.path.join(case, "0"), ignore_errors=True)
     write(case, "0/U", field("volVectorField", "U", "[0 1 -1 0 0 0 0]", "(0 0 0)",
-                             "type noSlip;", periodic_z))
+                             "type noSlip;", periodic))
     write(case, "0/p", field("volScalarField", "p", "[0 2 -2 0 0 0 0]", "0",
-                             "type zeroGradient;", periodic_z))
+                             "type zeroGradient;", periodic))
     write(case, "constant/fvOptions", header("dictionary", "fvOptions")
           + "bodyForce\n{\n    type vectorSemiImplicitSource;\n    selectionMode all;\n"
           "    volumeMode specific;\n    injectionRateSuSp\n    {\n"
@@ -213,31 +218,49 @@ def write_start_fields(case, direction, periodic_z):
 
 
 RESIDUAL = re.compile(r"Solving for (Ux|Uy|Uz|p), Initial residual = ([0-9.eE+-]+)")
+CPU_TIME = re.compile(r"^ExecutionTime = ([0-9.eE+-]+) s")    # simpleFoam's (rank 0's) CPU
+
+
+def solve_name(label, key):
+    """the start of a solve's progress lines: flow, the resolution, the direction"""
+    return " ".join(w for w in ("flow", label, key) if w)
 
 
 class ResidualMonitor:
-    """the initial residuals of each SIMPLE iteration; a progress line every few seconds.
-    Once the driven velocity component's is below TOLERANCE it ends simpleFoam (or mpirun)
-    once every rank has written the fields the next time. The other components and p are reported, not
-    tested: where their exact solution is zero or uniform (a slit, a straight duct) a
-    normalised residual is round-off over round-off."""
+    """the initial residuals of each SIMPLE iteration; a progress line (the resolution, the
+    direction, the iteration and the residuals) at the first iteration and then every
+    PROGRESS_SECONDS. Once the driven velocity component's residual is below TOLERANCE it
+    ends simpleFoam (or mpirun) once every rank has written the fields the next time. The other
+    components and p are reported, not tested: where their exact solution is zero or uniform
+    (a slit, a straight duct) a normalised residual is round-off over round-off."""
 
-    def __init__(self, progress, label):
-        self.progress, self.label = progress, label
-        self.driven = "U" + "xyz"[DIRECTIONS[label]]
-        self.iteration, self.residuals, self.last = 0, {}, time.time()
+    def __init__(self, progress, key, label):
+        self.progress, self.name = progress, solve_name(label, key)
+        self.driven = "U" + "xyz"[DIRECTIONS[key]]
+        self.iteration, self.residuals, self.last = 0, {}, None
         self.completed = {}
         self.converged = False
         self.stopped = False
         self.process = None
         self.last_write = None
+        self.cpu_seconds = 0.0
 
     def __call__(self, line):
+        cpu = CPU_TIME.match(line)
+        if cpu:
+            self.cpu_seconds = float(cpu.group(1))
         if line.startswith("Time = "):
             if not self.converged and self.residuals.get(self.driven, 1.0) <= TOLERANCE:
                 self.converged = True
                 self.last_write = WRITE_EVERY * -(-self.iteration // WRITE_EVERY)
             self.completed = self.residuals    # of the iteration just finished
+            if self.completed and (self.last is None
+                                   or time.time() - self.last >= PROGRESS_SECONDS):
+                self.last = time.time()
+                self.progress("%s: iteration %d, residual %s %.2e (%s; stops below %.0e)" % (
+                    self.name, self.iteration, self.driven, self.completed.get(self.driven, 1.0),
+                    " ".join("%s %.1e" % kv for kv in sorted(self.completed.items())
+                             if kv[0] != self.driven), TOLERANCE))
             self.iteration = int(float(line.split()[2]))
             self.residuals = {}
         m = RESIDUAL.search(line)
@@ -248,10 +271,6 @@ class ResidualMonitor:
             self.process.terminate()
         if m and m.group(1) not in self.residuals:
             self.residuals[m.group(1)] = float(m.group(2))
-        if time.time() - self.last > 10 and self.residuals:
-            self.last = time.time()
-            self.progress("flow %s: iteration %d, residuals %s" % (self.label, self.iteration, (
-                " ".join("%s %.2e" % kv for kv in sorted(self.residuals.items())))))
 
 
 def read_velocity(case, ncells):
@@ -273,13 +292,15 @@ def read_velocity(case, ncells):
     return u, int(float(latest))
 
 
-def solve(case, key, ncells, total, parallel, progress):
-    """one direction on the mesh in case: (k, residuals, iterations)"""
+def solve(case, key, ncells, total, parallel, progress, label):
+    """one direction on the mesh in case: (k, residuals, iterations, simpleFoam's CPU s)"""
     a = DIRECTIONS[key]
     for d in os.listdir(case):
         if d.startswith("processor") or (re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"):
             shutil.rmtree(os.path.join(case, d))
-    monitor = ResidualMonitor(progress, key)
+    monitor = ResidualMonitor(progress, key, label)
+    progress("%s: simpleFoam on %d cells, %d rank%s" % (monitor.name, ncells, 1 + parallel,
+                                                          "s" if parallel else ""))
     if parallel:
         foam(case, "decomposePar -force")
         foam(case, "mpirun -np 2 simpleFoam -parallel", log="simpleFoam." + key,
@@ -292,43 +313,49 @@ def solve(case, key, ncells, total, parallel, progress):
     if not monitor.converged:
         raise FlowError("flow %s did not converge in %d iterations (residuals %s)"
                         % (key, iterations, residuals))
-    return NU * u[:, a].sum() / total / BODY_FORCE, residuals, iterations
+    return NU * u[:, a].sum() / total / BODY_FORCE, residuals, iterations, monitor.cpu_seconds
 
 
 def permeability(solid, spacing, directions=("xx", "yy", "zz"), progress=None, workdir=None,
-                 periodic_z=False):
-    """k along the given directions (units of spacing^2) of the pore space of solid, periodic
-    in x and y; in z a slab (see above) unless periodic_z (then periodic as given)"""
+                 periodic=(True, True, False), label=""):
+    """k along the given directions (units of spacing^2) of the pore space of solid; the axes
+    that are not periodic are mirrored for the flow along them and symmetry planes otherwise
+    (see above). label (the resolution) starts the progress lines."""
     require_openfoam()
     progress = progress or (lambda msg: None)
     solid = np.asarray(solid, bool)
+    periodic = tuple(bool(p) for p in periodic)
     result = {"voxel_spacing": list(map(float, spacing)), "image_xyz": list(solid.shape),
-              "body_force": BODY_FORCE, "nu": NU, "tolerance": TOLERANCE, "cells": {},
-              "ranks": {}, "residuals": {}, "iterations": {}, "seconds": {}}
-    meshes = {}    # mesh name -> (image, z periodic)
+              "periodic": list(periodic), "body_force": BODY_FORCE, "nu": NU,
+              "tolerance": TOLERANCE, "cells": {}, "ranks": {}, "residuals": {},
+              "iterations": {}, "seconds": {}, "solver_cpu_seconds": {}}
+    meshes = {}    # mirrored axis (None: the image as it is) -> directions solved on it
     for key in directions:
-        if key == "zz" and not periodic_z:
-            meshes.setdefault("mirrored", (mirrored(solid), True, []))[2].append(key)
-        else:
-            meshes.setdefault("slab", (solid, periodic_z, []))[2].append(key)
-    for name, (image, z_cyclic, keys) in meshes.items():
+        a = DIRECTIONS[key]
+        meshes.setdefault(None if periodic[a] else a, []).append(key)
+    for axis, keys in meshes.items():
+        image, cyclic = solid, periodic
+        if axis is not None:
+            image = mirrored(solid, axis)
+            cyclic = tuple(p or a == axis for a, p in enumerate(periodic))
         case = tempfile.mkdtemp(prefix="pore_flow_", dir=workdir)
         try:
             t0 = time.time()
-            ncells = setup_case(case, image, spacing, z_cyclic, progress)
+            ncells = setup_case(case, image, spacing, cyclic, progress)
             parallel = ncells > PARALLEL_CELLS
             for key in keys:
-                write_start_fields(case, DIRECTIONS[key], z_cyclic)
-                k, residuals, iterations = solve(case, key, ncells, image.size, parallel,
-                                                 progress)
+                write_start_fields(case, DIRECTIONS[key], cyclic)
+                k, residuals, iterations, cpu = solve(case, key, ncells, image.size,
+                                                      parallel, progress, label)
                 result[key] = k
                 result["cells"][key] = ncells
                 result["ranks"][key] = 2 if parallel else 1
                 result["residuals"][key] = residuals
                 result["iterations"][key] = iterations
-                result["seconds"][key] = time.time() - t0
-                progress("flow %s: k = %.5g after %d iterations (%.0f s)"
-                         % (key, k, iterations, result["seconds"][key]))
+                result["seconds"][key] = time.time() - t0    # with the meshing
+                result["solver_cpu_seconds"][key] = cpu
+                progress("%s: k = %.5g after %d iterations (%.0f s)" % (
+                    solve_name(label, key), k, iterations, result["seconds"][key]))
                 t0 = time.time()
         finally:
             shutil.rmtree(case, ignore_errors=True)
@@ -338,5 +365,5 @@ def permeability(solid, spacing, directions=("xx", "yy", "zz"), progress=None, w
 if __name__ == "__main__":    # a quick look: a slit of 8 cells between two solid layers
     s = np.zeros((2, 2, 10), bool)
     s[:, :, 0] = s[:, :, -1] = True
-    print(permeability(s, (0.125,) * 3, ("xx",), periodic_z=True,
+    print(permeability(s, (0.125,) * 3, ("xx",), periodic=(True, True, True),
                        progress=lambda m: print(m, file=sys.stderr)))

@@ -71,23 +71,32 @@ class Grid:
         return (self.nx, self.ny, self.nz)
 
 
-def voxelize(particles, grid, progress):
-    """solid[i, j, k]: the voxel centre lies inside some ellipsoid; x and y wrap around"""
+def voxelize(particles, grid, progress, periodic=True):
+    """solid[i, j, k]: the voxel centre lies inside some ellipsoid; x and y wrap around when
+    periodic (the grid spans the periodic box), else the grid is cut out of the particles
+    given (which must then include the periodic images that reach into it)"""
     solid = np.zeros(grid.shape, dtype=bool)
     lo = np.array([grid.origin[0], grid.origin[1], grid.z0])
     h = np.array(grid.spacing)
-    if np.any(2 * particles.half_extent[:, :2] >= [grid.nx * grid.hx, grid.ny * grid.hy]):
+    if periodic and np.any(2 * particles.half_extent[:, :2]
+                           >= [grid.nx * grid.hx, grid.ny * grid.hy]):
         raise ValueError("a particle is wider than the periodic box")
+    if not periodic:
+        last_index = np.array(grid.shape) - 1
     first = np.ceil((particles.centres - particles.half_extent - lo) / h - 0.5).astype(int)
     last = np.floor((particles.centres + particles.half_extent - lo) / h - 0.5).astype(int)
     n = len(particles)
     report = max(1, n // 10) if solid.size > PROGRESS_VOXELS else n + 1
     for p in range(n):
         kz = np.arange(max(first[p, 2], 0), min(last[p, 2], grid.nz - 1) + 1)
-        if kz.size == 0:
+        if periodic:
+            ix = np.arange(first[p, 0], last[p, 0] + 1)
+            iy = np.arange(first[p, 1], last[p, 1] + 1)
+        else:
+            ix, iy = (np.arange(max(first[p, a], 0), min(last[p, a], last_index[a]) + 1)
+                      for a in (0, 1))
+        if kz.size == 0 or ix.size == 0 or iy.size == 0:
             continue
-        ix = np.arange(first[p, 0], last[p, 0] + 1)
-        iy = np.arange(first[p, 1], last[p, 1] + 1)
         d = [(idx + 0.5) * h[a] + lo[a] - particles.centres[p, a]
              for a, idx in enumerate((ix, iy, kz))]
         Q = particles.form[p]
@@ -136,9 +145,9 @@ def local_thickness(pore, spacing, radii, window, progress):
     return level, distance
 
 
-def periodic_labels(pore):
-    """face-connected components of the pore voxels, merged across the periodic x and y
-    faces; returns (labels, number of labels) with label 0 = solid"""
+def periodic_labels(pore, periodic=(True, True)):
+    """face-connected components of the pore voxels, merged across the faces of the periodic
+    axes among x and y; returns (labels, number of labels) with label 0 = solid"""
     labels, n = ndimage.label(pore)
     parent = np.arange(n + 1)
 
@@ -148,7 +157,8 @@ def periodic_labels(pore):
             a = parent[a]
         return a
 
-    for a, b in ((labels[0], labels[-1]), (labels[:, 0], labels[:, -1])):
+    faces = ((labels[0], labels[-1]), (labels[:, 0], labels[:, -1]))
+    for a, b in (pair for pair, p in zip(faces, periodic) if p):
         joined = (a > 0) & (b > 0)
         for u, v in set(zip(a[joined].tolist(), b[joined].tolist())):
             ru, rv = root(u), root(v)

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The deposit as a porous medium: porosity, specific surface, pore sizes, permeability.
 
-    ./ellipsoid-dep pores RUN_DIR [--voxel H] [--flow [--flow-voxel H]] [--quiet]
+    ./ellipsoid-dep pores RUN_DIR [--voxel H] [--flow [--flow-voxel H] [--flow-box L]
+                                                     [--flow-box-at X,Y]] [--quiet]
     ./ellipsoid-dep python tools/pores.py --compare OUT.png RUN_DIR [RUN_DIR ...]
 
 Reads RUN_DIR/deposit.dump (the runner's OVITO dump: id type x y z quatw quati quatj quatk
@@ -18,12 +19,15 @@ image (periodic in x and y): pore size distribution (local thickness from the Eu
 distance transform), connectivity from the bottom to the top of the slab, and the voxel
 porosity; these are computed at the voxel size H and at 2 H to show their convergence.
 Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values. With --flow:
-k_xx, k_yy, k_zz from a Stokes-flow solve with OpenFOAM (tools/pore_flow.py).
+k_xx, k_yy, k_zz from Stokes-flow solves with OpenFOAM (tools/pore_flow.py) on a box of side
+5 d cut out of the slab at three voxel sizes, extrapolated to a vanishing voxel
+(tools/pore_flow_domain.py, tools/pore_flow_fit.py); --flow-voxel H: at H alone.
 
 The parts: reading the particles and the slab in tools/pore_input.py, exact volumes and areas
 in tools/pore_surface.py, the voxel view (pore sizes, connectivity, tortuosity) in
 tools/pore_voxels.py, the largest inscribed ball in tools/pore_inscribed.py, the flow solve in
-tools/pore_flow.py, the picture in tools/pore_picture.py.
+tools/pore_flow.py (one image), tools/pore_flow_domain.py (the domain and the voxels) and
+tools/pore_flow_fit.py (the extrapolation), the picture in tools/pore_picture.py.
 
 --compare reads pores.json (running the analysis where it is missing) and packing.dat of
 several run folders and plots porosity, specific surface and permeability against the shape
@@ -45,16 +49,12 @@ from deposit_run import read_packing  # noqa: E402
 from pore_input import Particles, read_dump, read_slab, rotation_matrices  # noqa: E402,F401
 from pore_picture import plot  # noqa: E402
 from pore_surface import slab_fraction, slab_surface  # noqa: E402
-from pore_voxels import (Grid, analyse_voxels, check_memory, periodic_labels,  # noqa: E402
-                         voxelize)
+from pore_flow_domain import FLOW_BOX, FLOW_VOXEL_FRACTIONS, flow_permeability  # noqa: E402
+from pore_voxels import analyse_voxels  # noqa: E402
 from study_stats import Pooled  # noqa: E402
 
 VOXEL_FRACTION = 0.125    # default voxel size: this fraction of the smallest semi-axis
 MAX_VOXEL_FRACTION = 0.5  # larger voxels cannot resolve the thinnest particle dimension
-FLOW_VOXEL_FRACTION = 0.25    # default voxel of the flow solve (doc/howto_pores.md)
-MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thinnest particle
-# the flow's voxel image and its labels, before OpenFOAM's mesh (a lower bound of its memory)
-FLOW_IMAGE_BYTES = 16
 KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
 
 
@@ -137,45 +137,6 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None, voxel_fraction=
     return result
 
 
-def flow_permeability(particles, box, zlo, zhi, voxel=None, progress=None, workdir=None,
-                      directions=("xx", "yy", "zz")):
-    """k_xx, k_yy, k_zz of the slab from the Stokes-flow solve (tools/pore_flow.py) on a voxel
-    image of the slab alone, in units of d^2 (d: the mean volume-equivalent diameter)"""
-    import pore_flow
-    progress = progress or Progress(quiet=True)
-    smallest = float(particles.semi.min())
-    voxel = FLOW_VOXEL_FRACTION * smallest if voxel is None else voxel
-    if not 0 < voxel <= MAX_FLOW_VOXEL_FRACTION * smallest:
-        raise ValueError("flow voxel %.4g: needs 0 < voxel <= %g x the smallest semi-axis (%.4g)"
-                         % (voxel, MAX_FLOW_VOXEL_FRACTION, MAX_FLOW_VOXEL_FRACTION * smallest))
-    grid = Grid(box, zlo, zhi, voxel, margin=0.0)
-    check_memory(grid, voxel, FLOW_IMAGE_BYTES, "--flow-voxel")
-    pore_flow.require_openfoam()
-    solid = voxelize(particles, grid, progress)[:, :, grid.slab]
-    labels, _ = periodic_labels(~solid)
-    spanning = np.intersect1d(labels[:, :, 0][labels[:, :, 0] > 0],
-                              labels[:, :, -1][labels[:, :, -1] > 0])
-    if not spanning.size:
-        raise ValueError("no connected pore path from the bottom to the top of the slab at the "
-                         "flow voxel %.4g: no flow along z (a smaller --flow-voxel may open one)"
-                         % voxel)
-    # pores off the paths from bottom to top carry no flow, and their pressure equations,
-    # without a reference, would stop the solver: they are filled
-    connected = np.isin(labels, spanning)
-    isolated = float((~solid & ~connected).sum() / max((~solid).sum(), 1))
-    solid = ~connected
-    d = float(np.mean(2.0 * np.cbrt(np.prod(particles.semi, axis=1))))
-    k = pore_flow.permeability(solid, grid.spacing, directions, progress, workdir)
-    out = {key: k[key] / d ** 2 for key in directions}
-    out.update({"units": "d^2", "d": d, "voxel": voxel, "voxels_per_d": d / voxel,
-                "porosity_voxel_connected": float(1.0 - solid.mean()),
-                "isolated_pore_fraction": isolated})
-    for key in ("cells", "residuals", "iterations", "seconds", "ranks", "image_xyz",
-                "tolerance"):
-        out[key] = k[key]
-    return out
-
-
 def write_voxel_image(result, run_dir):
     """uint8 raw stack (1 solid, 0 pore; x fastest, then y, then z) + MetaImage header"""
     solid = result["_solid_slab"]
@@ -200,10 +161,11 @@ def public(result):
 
 
 def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_voxel=None,
-               voxel_fraction=VOXEL_FRACTION):
+               voxel_fraction=VOXEL_FRACTION, flow_box=FLOW_BOX, flow_box_at=None):
     """analyse RUN_DIR/deposit.dump in the slab of RUN_DIR/packing.dat; write pores.json,
     the voxel image and pores.png (with flow: the permeability tensor's diagonal from the
-    flow solve too); return the public result"""
+    flow solve too, at the default voxels and extrapolated, or at flow_voxel alone); return
+    the public result"""
     progress = Progress(quiet)
     for name in ("deposit.dump", "packing.dat"):
         if not os.path.isfile(os.path.join(run_dir, name)):
@@ -212,8 +174,9 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
     pk = read_slab(run_dir)
     progress("%d particles, slab z in [%g, %g]" % (len(particles), pk["zlo"], pk["zhi"]))
     # the flow first: its bad input (no pore path, a voxel too large) ends the run early
-    k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"], flow_voxel, progress)
-         if flow else None)
+    k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"],
+                           None if flow_voxel is None else [flow_voxel], progress,
+                           side=flow_box, at=flow_box_at) if flow else None)
     result = analyse(particles, box, pk["zlo"], pk["zhi"], voxel, progress, voxel_fraction)
     if "phi" in pk:
         result["porosity_check"] = {"one_minus_phi_packing_dat": 1.0 - pk["phi"],
@@ -221,7 +184,6 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
     result["voxel_image"] = write_voxel_image(result, run_dir)
     if k is not None:
         kc = result["kozeny_carman_permeability"] / k["d"] ** 2
-        k["anisotropy_xx_zz"] = 0.5 * (k["xx"] + k["yy"]) / k["zz"] if k["zz"] > 0 else None
         k["ratio_to_kozeny_carman"] = {a: k[a] / kc for a in ("xx", "yy", "zz")}
         result["permeability_flow"] = k
     for key in ("eta", "zeta", "delta_r", "N", "seed", "at_rest"):    # at_rest 0: said
@@ -315,8 +277,14 @@ def main(argv=None):
                     help="also the permeability tensor's diagonal from a Stokes-flow solve "
                          "(OpenFOAM; ./ellipsoid-dep pores installs it on first use)")
     ap.add_argument("--flow-voxel", type=float, default=None,
-                    help="voxel size of the flow solve (default %g x the smallest semi-axis)"
-                         % FLOW_VOXEL_FRACTION)
+                    help="one voxel size for the flow solve, no extrapolation (default: %s x "
+                         "the smallest semi-axis, extrapolated to a vanishing voxel)"
+                         % ", ".join("%.4g" % f for f in FLOW_VOXEL_FRACTIONS))
+    ap.add_argument("--flow-box", type=float, default=FLOW_BOX, metavar="L",
+                    help="the flow domain: a box of side L d cut out of the slab (default %g; "
+                         "0: the whole slab)" % FLOW_BOX)
+    ap.add_argument("--flow-box-at", default=None, metavar="X,Y",
+                    help="the cut box's centre (default: the box's centre)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
     import pore_flow
@@ -347,8 +315,18 @@ def report(ap, args):
     if not 0 < args.voxel_fraction <= MAX_VOXEL_FRACTION:
         raise ValueError("--voxel-fraction %g: needs 0 < fraction <= %g"
                          % (args.voxel_fraction, MAX_VOXEL_FRACTION))
+    if not args.flow_box >= 0:
+        raise ValueError("--flow-box %g: needs L >= 0 (0: the whole slab)" % args.flow_box)
+    at = None
+    if args.flow_box_at is not None:
+        try:
+            at = [float(v) for v in args.flow_box_at.split(",")]
+        except ValueError:
+            at = []
+        if len(at) != 2:
+            raise ValueError("--flow-box-at %s: needs X,Y" % args.flow_box_at)
     r = run_folder(d, args.voxel, args.quiet, flow=args.flow, flow_voxel=args.flow_voxel,
-                   voxel_fraction=args.voxel_fraction)
+                   voxel_fraction=args.voxel_fraction, flow_box=args.flow_box, flow_box_at=at)
     c = r["convergence"]
     print("pores: %s (%d particles, slab z in [%.4g, %.4g])"
           % (d, r["particles"], r["slab"]["zlo"], r["slab"]["zhi"]))
@@ -367,13 +345,29 @@ def report(ap, args):
     print("  geometric tortuosity %s, %s" % tuple(
         "none" if t is None else "%.4f" % t for t in c["geometric_tortuosity"]))
     if "permeability_flow" in r:
-        k = r["permeability_flow"]
-        print("  flow k (d^2)        xx %.4g  yy %.4g  zz %.4g  (voxel d/%.3g, %d + %d cells)"
-              % (k["xx"], k["yy"], k["zz"], k["voxels_per_d"], k["cells"]["xx"],
-                 k["cells"]["zz"]))
-        print("  k / Kozeny-Carman   xx %.3f  yy %.3f  zz %.3f" % tuple(
-            k["ratio_to_kozeny_carman"][a] for a in ("xx", "yy", "zz")))
+        print_flow(r["permeability_flow"], r["porosity"])
     print("  files: pores.json pores.png pores_voxels.raw pores_voxels.mhd")
+
+
+def print_flow(k, porosity):
+    dom = k["domain"]
+    print("  flow domain         %s %s d (the slab's exact porosity %.4f)" % (
+        dom["kind"], " x ".join("%.3g" % s for s in dom["sides_d"]), porosity))
+    for r in k["resolutions"]:
+        print("  flow at d/%-5.3g     xx %.4g  yy %.4g  zz %.4g  (xx+yy)/2zz %.4f  (pores %.4f, "
+              "%d + %d cells)" % (r["voxels_per_d"], r["xx"], r["yy"], r["zz"],
+                                  r["anisotropy_xx_zz"], r["porosity_voxel"], r["cells"]["xx"],
+                                  r["cells"]["zz"]))
+    if "extrapolation" in k:
+        e = k["extrapolation"]
+        print("  flow k0 (d^2)       " + "  ".join(
+            "%s %.4g +- %.2g (p %s)" % (a, k[a], k[a + "_error"], "none" if e[a]["p_fitted"]
+                                        is None else "%.2f" % e[a]["p_fitted"])
+            for a in ("xx", "yy", "zz")))
+        print("  anisotropy k0       %.4f +- %.2g" % (k["anisotropy_xx_zz"],
+                                                     k["anisotropy_xx_zz_error"]))
+    print("  k / Kozeny-Carman   xx %.3f  yy %.3f  zz %.3f" % tuple(
+        k["ratio_to_kozeny_carman"][a] for a in ("xx", "yy", "zz")))
 
 
 if __name__ == "__main__":

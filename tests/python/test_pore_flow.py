@@ -98,7 +98,7 @@ def test_simple_cubic_array_zick_homsy(c):
     0.5236 is left out: its voxelised contacts open and close with the resolution)"""
     n = 16
     solid = cubic_cell(c, n)
-    k = pore_flow.permeability(solid, (1.0 / n,) * 3, ("xx",), periodic_z=True)
+    k = pore_flow.permeability(solid, (1.0 / n,) * 3, ("xx",), periodic=(True, True, True))
     want, _ = zick_homsy_permeability(float(solid.mean()))
     assert abs(k["xx"] / want - 1) < 0.04
 
@@ -106,9 +106,9 @@ def test_simple_cubic_array_zick_homsy(c):
 def test_two_ranks_give_the_serial_answer(monkeypatch):
     """above PARALLEL_CELLS the solve runs on 2 ranks (decomposePar, mpirun): the same k"""
     solid = np.tile(cubic_cell(0.343, 8), (2, 1, 1))
-    serial = pore_flow.permeability(solid, (1 / 8,) * 3, ("xx",), periodic_z=True)
+    serial = pore_flow.permeability(solid, (1 / 8,) * 3, ("xx",), periodic=(True, True, True))
     monkeypatch.setattr(pore_flow, "PARALLEL_CELLS", 100)
-    parallel = pore_flow.permeability(solid, (1 / 8,) * 3, ("xx",), periodic_z=True)
+    parallel = pore_flow.permeability(solid, (1 / 8,) * 3, ("xx",), periodic=(True, True, True))
     assert serial["ranks"]["xx"] == 1 and parallel["ranks"]["xx"] == 2
     assert parallel["xx"] == pytest.approx(serial["xx"], rel=1e-5)
 
@@ -136,31 +136,34 @@ def cubic_lattice_folder(folder, n=2, layers=8):
 
 
 def test_tool_flow_on_the_cubic_lattice(tmp_path):
-    """pores.py --flow at its default flow voxel (8 per diameter) on touching unit spheres in a
+    """pores.py --flow at one flow voxel (8 per diameter) on touching unit spheres in a
     slab of 4 whole periods, whose planes are mirror planes of the lattice (and of its voxel
     image): the mirrored image for z is then the periodic lattice, so k_zz equals k of the
     periodic unit cell at the same voxels; the symmetry planes for x and y are OpenFOAM's
     symmetryPlane patches, whose discretisation is not the exact mirror: measured -9.0e-4
-    (k_xx = k_yy by the lattice's symmetry); in d^2 (d = 1)"""
+    (k_xx = k_yy by the lattice's symmetry); in d^2 (d = 1). The box is narrower than the
+    default cut box: the flow domain is the slab."""
     folder = str(tmp_path / "lattice")
     cubic_lattice_folder(folder)
-    pores.main([folder, "--flow", "--quiet"])
+    n = 8
+    pores.main([folder, "--flow", "--flow-voxel", str(1.0 / n), "--quiet"])
     with open(os.path.join(folder, "pores.json")) as f:
         k = json.load(f)["permeability_flow"]
     assert k["units"] == "d^2" and k["d"] == pytest.approx(1.0)
-    n = 1.0 / (pores.FLOW_VOXEL_FRACTION * 0.5)
-    assert k["voxels_per_d"] == pytest.approx(n)
+    assert k["domain"]["kind"] == "slab" and "extrapolation" not in k
+    (r,) = k["resolutions"]
+    assert r["voxels_per_d"] == pytest.approx(n)
     x = (np.arange(int(n)) + 0.5) / n - 0.5
     X, Y, Z = np.meshgrid(x, x, x, indexing="ij")
     cell = pore_flow.permeability(X * X + Y * Y + Z * Z <= 0.25, (1 / n,) * 3, ("xx",),
-                                  periodic_z=True)
-    assert k["zz"] == pytest.approx(cell["xx"], rel=1e-5)
+                                  periodic=(True, True, True))
+    assert k["zz"] == r["zz"] == pytest.approx(cell["xx"], rel=1e-5)
     assert k["xx"] == pytest.approx(cell["xx"], rel=2e-3)
     assert k["yy"] == pytest.approx(k["xx"], rel=1e-6)
-    assert k["cells"]["zz"] == 2 * k["cells"]["xx"] == 2 * 16 * cell["cells"]["xx"]
-    assert k["isolated_pore_fraction"] == 0.0
-    for key, r in k["residuals"].items():
-        assert r["U" + key[0]] <= pore_flow.TOLERANCE
+    assert r["cells"]["zz"] == 2 * r["cells"]["xx"] == 2 * 16 * cell["cells"]["xx"]
+    assert r["filled_pore_fraction"] == 0.0
+    for key, res in r["residuals"].items():
+        assert res["U" + key[0]] <= pore_flow.TOLERANCE
 
 
 def run_tool(args, capsys):
@@ -186,6 +189,10 @@ def test_bad_input(tmp_path, capsys):
     assert code == 2 and "--voxel-fraction 0.9: needs 0 < fraction <= 0.5" in err
     code, err = run_tool([lattice, "--quiet", "--flow", "--flow-voxel", "0.6"], capsys)
     assert code == 2 and "flow voxel 0.6" in err
+    code, err = run_tool([lattice, "--quiet", "--flow", "--flow-box", "-1"], capsys)
+    assert code == 2 and "--flow-box -1: needs L >= 0" in err
+    code, err = run_tool([lattice, "--quiet", "--flow", "--flow-box-at", "1"], capsys)
+    assert code == 2 and "--flow-box-at 1: needs X,Y" in err
     # a closed layer: overlapping spheres of radius 0.75 on the lattice at z = 4
     closed = str(tmp_path / "closed")
     centres = [(i + 0.5, j + 0.5, k + 0.5) for i in range(2) for j in range(2) for k in range(8)]

@@ -1,0 +1,139 @@
+"""The flow solve's default (tools/pore_flow_domain.py, tools/pore_flow_fit.py): several voxels
+extrapolated to a vanishing voxel, a box cut out of a wider slab, and the progress lines.
+
+- the fit k = k0 + C h^p: p and k0 recovered from three exact values, the fixed-p least
+  squares with its standard error, non-monotone values (no fitted p); the plane slit, whose
+  discrete k is exactly of that form, extrapolated to Poiseuille's k;
+- a cut box whose faces are mirror planes of a simple cubic lattice: mirrored along the flow
+  and symmetry planes across it, it is the periodic lattice (k of the periodic cell);
+- the progress lines name the resolution, the direction, the iteration and the residual.
+OpenFOAM must be installed for all but the fit (see test_pore_flow.py).
+"""
+import math
+
+import numpy as np
+import pytest
+
+import pore_flow
+import pore_flow_domain
+import pores
+from pore_flow_fit import P_FIXED, extrapolate, fitted_order
+
+
+def test_extrapolation_recovers_a_power_law():
+    """three exact values of k0 + C h^p: the fitted p and k0 to round-off; k0 the mean of the
+    fitted and the fixed-p values, its error covering both"""
+    h = [1 / 8, 1 / 12, 1 / 16]
+    k = [2.0 + 5.0 * x ** 1.5 for x in h]
+    e = extrapolate(h, k)
+    assert e["p_fitted"] == pytest.approx(1.5, rel=1e-9)
+    assert e["k0_fitted_p"] == pytest.approx(2.0, rel=1e-12)
+    assert e["p_fixed"] == P_FIXED
+    assert e["k0"] == pytest.approx(0.5 * (2.0 + e["k0_fixed_p"]), rel=1e-12)
+    assert abs(e["k0_fixed_p"] - e["k0"]) <= e["error"]
+    assert abs(e["k0_fitted_p"] - e["k0"]) <= e["error"]
+    # the fixed-p fit of an exact h^2 law leaves no residual: exact k0, no standard error
+    e2 = extrapolate(h[::-1], [2.0 - 3.0 * x ** 2 for x in h[::-1]])
+    assert e2["k0_fixed_p"] == pytest.approx(2.0, rel=1e-12)
+    assert e2["fixed_p_standard_error"] == pytest.approx(0.0, abs=1e-12)
+    assert e2["p_fitted"] == pytest.approx(2.0, rel=1e-9) and e2["error"] < 1e-9
+
+
+def test_extrapolation_of_values_that_do_not_converge_monotonically():
+    """differences of both signs: no fitted p; k0 from the fixed p, the error the whole
+    extrapolation from the finest value plus the fit's standard error"""
+    h = [1 / 8, 1 / 12, 1 / 16]
+    k = [1.2, 0.9, 1.0]
+    assert fitted_order(h, k) is None
+    e = extrapolate(h, k)
+    assert e["p_fitted"] is None and e["k0_fitted_p"] is None
+    x = np.array(h) ** P_FIXED
+    c, k0 = np.polyfit(x, k, 1)
+    resid = np.array(k) - k0 - c * x
+    se = math.sqrt(resid @ resid / 1 * np.linalg.inv(np.column_stack([np.ones(3), x]).T
+                                                     @ np.column_stack([np.ones(3), x]))[0, 0])
+    assert e["k0"] == pytest.approx(k0, rel=1e-12)
+    assert e["fixed_p_standard_error"] == pytest.approx(se, rel=1e-9)
+    assert e["error"] == pytest.approx(abs(k0 - 1.0) + se, rel=1e-9)
+    with pytest.raises(ValueError, match="three or more different voxel sizes"):
+        extrapolate(h[:2], k[:2])
+
+
+def test_slit_extrapolates_to_poiseuille():
+    """a slit of width H between walls at n = 6, 8, 12 cells: the finite-volume k is exactly
+    (H^2 / 12)(1 + 2 / n^2), k0 + C h^2, so the extrapolation recovers p = 2 and Poiseuille's
+    H^2 / 12 to the solve's residual (per pore area: one solid layer of n + 1 per period)"""
+    H = 1.0
+    h, k = [], []
+    for n in (6, 8, 12):
+        solid = np.zeros((2, n + 1, 3), bool)
+        solid[:, 0, :] = True
+        r = pore_flow.permeability(solid, (H / n,) * 3, ("xx",))
+        h.append(H / n)
+        k.append(r["xx"] * (n + 1) / n)
+    e = extrapolate(h, k)
+    # each k to about 1e-5 (the residual), their differences 1 to 3 % of k: p to 1e-3 (1.9973)
+    assert e["p_fitted"] == pytest.approx(2.0, rel=3e-3)
+    assert e["k0"] == pytest.approx(H * H / 12, rel=1e-4)
+    assert abs(e["k0"] - H * H / 12) <= e["error"] + 1e-4 * H * H / 12
+
+
+def lattice(n, layers, radius=0.5):
+    """a simple cubic lattice of spheres in unit cells, box n x n x layers"""
+    c = np.array([[i + 0.5, j + 0.5, k + 0.5]
+                  for i in range(n) for j in range(n) for k in range(layers)])
+    p = pores.Particles(c, np.tile([1.0, 0, 0, 0], (len(c), 1)), np.full((len(c), 3), radius))
+    return p, np.array([[0, n], [0, n], [0, layers]], dtype=float)
+
+
+def test_cut_box_of_a_lattice_is_the_periodic_lattice():
+    """a 2 x 2 x 2 box cut out of a 4 x 4 lattice's slab with its faces on the lattice's
+    mirror planes (x, y in [1, 3], z cut to [3, 5] about the slab's middle): mirrored along
+    the flow it is the periodic lattice, and the symmetry planes across it are its mirror
+    planes, so k_xx = k_yy = k_zz (the cube's symmetry) = k of the periodic cell at the same
+    voxels to the symmetry planes' discretisation: two pairs of them across each flow,
+    measured -2.4e-3 (one pair: -9e-4, test_pore_flow.py). A box across the deposit's
+    periodic edge (x, y in [-0.5, 1.5]) needs the particles' periodic images: its image is
+    that of the same box inside (the lattice's period is 1)."""
+    p, box = lattice(4, 8, radius=0.4)
+    n = 8
+    h = 1.0 / n
+    k = pore_flow_domain.flow_permeability(p, box, 2.0, 6.0, [h], side=2.0 / 0.8)
+    assert k["domain"]["kind"] == "box"
+    assert k["domain"]["x"] == pytest.approx([1.0, 3.0], abs=1e-12)
+    assert k["domain"]["z"] == pytest.approx([3.0, 5.0], abs=1e-12)
+    r = k["resolutions"][0]
+    assert r["image_xyz"] == [2 * n, 2 * n, 2 * n] and "extrapolation" not in k
+    x = (np.arange(n) + 0.5) / n - 0.5
+    X, Y, Z = np.meshgrid(x, x, x, indexing="ij")
+    cell = pore_flow.permeability(X * X + Y * Y + Z * Z <= 0.16, (h,) * 3, ("xx",),
+                                  periodic=(True, True, True))
+    d = 0.8
+    for key in ("xx", "yy", "zz"):
+        assert k[key] * d ** 2 == pytest.approx(cell["xx"], rel=3e-3)
+        assert k[key] == pytest.approx(k["xx"], rel=1e-6)
+        assert r["cells"][key] == 2 * 8 * cell["cells"]["xx"]
+    # across the deposit's periodic edge: the images fill the box as the lattice does
+    domain = pore_flow_domain.flow_domain(box, 2.0, 6.0, d, 2.5, at=(0.5, 0.5))
+    solid, _, filled = pore_flow_domain.flow_image(p, box, domain, h, lambda m: None)
+    inner = pore_flow_domain.flow_domain(box, 2.0, 6.0, d, 2.5, at=(1.5, 1.5))
+    same, _, _ = pore_flow_domain.flow_image(p, box, inner, h, lambda m: None)
+    assert np.array_equal(solid, same) and filled == 0.0
+
+
+def test_progress_names_resolution_direction_iteration_and_residual(monkeypatch):
+    """every iteration's line (PROGRESS_SECONDS 0): flow, the label, the direction, the
+    iteration and the driven component's residual, which ends below the tolerance"""
+    monkeypatch.setattr(pore_flow, "PROGRESS_SECONDS", 0.0)
+    lines = []
+    solid = np.zeros((2, 7, 3), bool)
+    solid[:, 0, :] = True
+    pore_flow.permeability(solid, (0.1,) * 3, ("xx",), lines.append, label="d/8")
+    iterations = [ln for ln in lines if ln.startswith("flow d/8 xx: iteration ")]
+    assert len(iterations) >= 5
+    numbers = [int(ln.split()[4].rstrip(",")) for ln in iterations]
+    assert numbers == sorted(numbers) and numbers[0] == 1
+    residual = [float(ln.split("residual Ux ")[1].split()[0]) for ln in iterations]
+    assert residual[-1] <= pore_flow.TOLERANCE < residual[0]
+    assert any(ln.startswith("flow d/8 xx: simpleFoam on 36 cells") for ln in lines)
+    assert any(ln.startswith("flow d/8 xx: k = ") for ln in lines)
