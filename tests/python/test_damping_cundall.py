@@ -12,8 +12,9 @@ Here omega comes from the angular momentum, omega = R I^-1 R^T L.
 - Spheres against LAMMPS's fix damping/cundall (atom_style sphere, the same pair and wall
   laws, no friction: nothing spins, so the two styles' spin velocities cannot differ): the
   trajectories agree step for step, and differ from undamped ones.
-- in.deposit's cundall variable: the damping holds until the rest criterion first holds,
-  is switched off, and the deposit is at rest on undamped samples at least two chunks later.
+- in.deposit's cundall variable: the damping is switched on once the batch has landed (never
+  during the fall and the impacts), off when the rest criterion first holds, and the deposit
+  is at rest on undamped samples at least two chunks later.
 - Bad input: a gamma outside [0, 1], an extra word, atom_style sphere.
 """
 import re
@@ -141,10 +142,18 @@ def test_deposit_switches_the_damping_off_before_rest(tmp_path):
     assert not lmp.has_id("fix", "cundall")
     lmp.close()
     log = (out / "log.lammps").read_text()
+    landed = re.search(r"^ELLIPSOID_DEP: landed after (\d+) steps; Cundall damping 0.7 on",
+                       log, re.M)
     switched = re.search(r"^ELLIPSOID_DEP: settled under Cundall damping after (\d+) steps; "
                          r"switched off", log, re.M)
     rest = re.search(r"^ELLIPSOID_DEP: at rest after (\d+) steps", log, re.M)
-    assert switched and rest
+    assert landed and switched and rest
+    # on only after the landing: the pour's fall and impacts are undamped
+    progress = [(int(a), float(b), float(c)) for a, b, c in re.findall(
+        r"^PROGRESS step (\d+) inserted \S+ of \S+ KE/particle (\S+) target \S+ flight (\S+)",
+        log, re.M)]
+    before = [p for p in progress if p[0] < int(landed.group(1))]
+    assert before and all(ke >= 1e-3 or flight >= 1.0 for _, ke, flight in before)
     assert int(rest.group(1)) >= int(switched.group(1)) + 2 * 500
 
 
