@@ -101,10 +101,12 @@ def falling_spheres(style, damping, steps):
     for i in range(len(positions)):
         lmp.command(f"set atom {i + 1} vx {0.3 * (i - 1.5)} vy {0.2 * i} vz -0.5")
     if style == "sphere":
-        lmp.commands_string("""
+        law = ("hertz/material 1e5 0.8 0.3 damping coeff_restitution "
+               "tangential linear_nohistory 0 0")
+        lmp.commands_string(f"""
             pair_style granular
-            pair_coeff * * hertz/material 1e5 0.8 0.3 damping coeff_restitution tangential linear_nohistory 0 0
-            fix floor all wall/gran granular hertz/material 1e5 0.8 0.3 damping coeff_restitution tangential linear_nohistory 0 0 zplane 0 NULL
+            pair_coeff * * {law}
+            fix floor all wall/gran granular {law} zplane 0 NULL
             fix i all nve/sphere""")
     else:
         lmp.commands_string("""

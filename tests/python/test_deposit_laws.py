@@ -5,8 +5,9 @@ The paper's viscous tangential law F_t = -mu F_n v_t is a dashpot whose coeffici
 peaks with the impact's normal force; velocity Verlet integrates a dashpot stably only below
 two damping times. The rule's damping time is therefore the shorter of the normal m*/gamma at
 the deepest overlap and the tangential m_t/(mu F_peak) at the peak force (m_t: the mass for
-sliding, rotation included); for the history spring's dashpot xt, m_t/(xt gamma_n). Without the tangential part the rule's dt was several times the
-tangential damping time and the first impacts threw atoms out of the box.
+sliding, rotation included); for the history spring's dashpot xt, m_t/(xt gamma_n). Without
+the tangential part the rule's dt was several times the tangential damping time and the first
+impacts threw atoms out of the box.
 
 The scene is examples/deposit/in.deposit at N 100 with the particles released at vdrop 8, so
 that they hit the ground at the speed of the N 600 default (about 9.8 against 9.1) after a

@@ -60,8 +60,9 @@ struct ForceLaw {
   double damping_time(double effective_radius, double effective_mass, double impact_speed,
                       double ftm2v = 1.0) const;
   // m_t / gamma_t of the tangential model at the peak normal force and the normal damping
-  // of the deepest overlap of that impact (HUGE_VAL when it does not damp). tangential_mass: the effective mass for sliding at the contact,
-  // rotation included (rotational_compliance in ellipsoid_shape.h); the same bound on dt
+  // of the deepest overlap of that impact (HUGE_VAL when it does not damp). tangential_mass:
+  // the effective mass for sliding at the contact, rotation included (rotational_compliance
+  // in ellipsoid_shape.h); the same bound on dt
   double tangential_damping_time(double effective_radius, double effective_mass,
                                  double tangential_mass, double impact_speed,
                                  double ftm2v = 1.0) const;

@@ -12,8 +12,9 @@
      contact time     t_c = 2 xi_max / v  int_0^1 (1 - u^(5/2))^(-1/2) du
                           = 2 (2/5) B(2/5, 1/2) xi_max / v  ~ 3.218 (m^2 / (k^2 v))^(1/5)
      peak force       k xi_max^(3/2), the elastic force there
-     damping time     m / gamma(R*, xi_max, m*) (peak_damping: that gamma), HUGE_VAL without damping: velocity Verlet
-                      integrates a damper stably only for dt below twice it. gamma takes m*
+     damping time     m / gamma(R*, xi_max, m*) (peak_damping: that gamma), HUGE_VAL
+                      without damping: velocity Verlet integrates a damper stably only for
+                      dt below twice it. gamma takes m*
                       in mass units as given (LAMMPS pair granular's convention for the
                       restitution damping), the time divides the inertia by it.
 ------------------------------------------------------------------------- */
