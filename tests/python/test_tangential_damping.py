@@ -2,7 +2,8 @@
 `tangential linear_history kt xt mu` (sphere limit): F_t = -kt s - xt gamma_n v_t, gamma_n the
 normal damping (here hertz/material's restitution damping, LAMMPS's damping coeff_restitution),
 capped at mu F_n with the spring keeping what the dashpot leaves. Pair, plane wall and region
-wall; the time-step rule's tangential damping time; a restart that keeps xt. Both laws have
+wall; the time-step rule's tangential damping time; a restart that keeps xt, and one of the
+previous version (16 law values, without xt) that still reads. Both laws have
 limit_damping: without it LAMMPS caps the friction at mu |F_n| also when the damped normal
 force pulls at the end of an impact, this package at mu max(F_n, 0) (the doc's difference).
 
@@ -13,6 +14,8 @@ through whole oblique impacts, sticking and sliding, step for step. The pair's t
 r - overlap/2 in both; a wall's torque takes r in LAMMPS (doc/fix_wall_gran_ellipsoid.rst), so
 for walls the forces and positions are compared.
 """
+import os
+
 import numpy as np
 import pytest
 
@@ -180,3 +183,30 @@ def test_restart_keeps_xt(tmp_path):
     f = per_atom(lmp, "f")
     lmp.close()
     np.testing.assert_allclose(f, f_ref, rtol=1e-13, atol=1e-13 * np.abs(f_ref).max())
+
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def test_restart_of_the_previous_law_record_reads(tmp_path):
+    """data/old_law_16.restart, written by the plugin of 826e5a5 (law record of 16 values,
+    before xt was appended; data/in.old_law_16, with rolling sds), is read as a record of this
+    version without xt: continued 20 steps it gives, bit for bit, the forces of the same input
+    run and restarted with this version (so the record read is the law, xt 0, and the old
+    version's steps are this one's)."""
+    def continued(restart):
+        lmp = new_lammps()
+        lmp.commands_string(f"read_restart {restart}\ncomm_modify vel yes\n"
+                            "fix integrate all nve/ellipsoid\nrun 20 post no\n")
+        f = per_atom(lmp, "f")
+        lmp.close()
+        return f
+
+    now = tmp_path / "now.restart"
+    lmp = new_lammps()
+    lmp.commands_string(f"variable out index {now}\n")
+    lmp.file(os.path.join(DATA, "in.old_law_16"))
+    lmp.close()
+    f_old, f_now = continued(os.path.join(DATA, "old_law_16.restart")), continued(now)
+    assert np.abs(f_now).max() > 0.0
+    np.testing.assert_array_equal(f_old, f_now)
