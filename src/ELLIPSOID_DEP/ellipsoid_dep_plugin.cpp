@@ -13,6 +13,7 @@
 #include "compute_packing_ellipsoid.h"
 #include "compute_packing_profile.h"
 #include "compute_unbalanced_force.h"
+#include "fix_damping_cundall_ellipsoid.h"
 #include "fix_nve_ellipsoid.h"
 #include "fix_pour_ellipsoid.h"
 #include "fix_wall_gran_ellipsoid.h"
@@ -67,6 +68,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   register_style(reg, lmp, handle, "fix", "nve/ellipsoid",
                  "velocity Verlet for ellipsoids (nve/asphere) that does not rotate spheres",
                  (void *) &create_with_args<FixNVEEllipsoid, Fix>);
+  register_style(reg, lmp, handle, "fix", "damping/cundall/ellipsoid",
+                 "Cundall's local damping for ellipsoids (a settling aid)",
+                 (void *) &create_with_args<FixDampingCundallEllipsoid, Fix>);
   register_style(reg, lmp, handle, "compute", "packing/ellipsoid",
                  "volume fraction and coordination number of an ellipsoid deposit",
                  (void *) &create_with_args<ComputePackingEllipsoid, Compute>);

@@ -15,8 +15,19 @@
 using namespace LAMMPS_NS;
 using namespace EllipsoidDep;
 
-// the values the law record gained since the previous version: rolling sds's k_r, gamma_r, mu_r
-static constexpr int APPENDED_LAW_VALUES = 3;
+// the values the law record gained, newest first: tangential history's xt; rolling sds's
+// k_r, gamma_r, mu_r. Each was appended, so the records of earlier versions are its prefixes.
+static constexpr int APPENDED_LAW_VALUES[] = {1, 3};
+
+// a law record of this size is this version's or an earlier one's
+static bool known_law_record(int size)
+{
+  int known = packed_law_size();
+  if (size == known) return true;
+  for (int appended : APPENDED_LAW_VALUES)
+    if (size == (known -= appended)) return true;
+  return false;
+}
 
 void PairGranularEllipsoid::write_restart_settings(FILE *fp)
 {
@@ -82,10 +93,9 @@ void PairGranularEllipsoid::read_restart(FILE *fp)
   int sizes[2] = {0, 0};    // laws, doubles per law
   if (me == 0) utils::sfread(FLERR, sizes, sizeof(int), 2, fp, nullptr, error);
   MPI_Bcast(sizes, 2, MPI_INT, 0, world);
-  // models are appended to the last family (force_law_registry.h), so the record of an
-  // earlier version is the start of this one's: the parameters of the models it lacks keep
-  // their defaults
-  if (sizes[1] != packed_law_size() && sizes[1] != packed_law_size() - APPENDED_LAW_VALUES)
+  // the record of an earlier version is the start of this one's: the parameters it lacks
+  // keep their defaults
+  if (!known_law_record(sizes[1]))
     error->all(FLERR,
                "Pair granular/ellipsoid: the restart file's force laws have {} values each, "
                "this version has {}: the file was written by another version",

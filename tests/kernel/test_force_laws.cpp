@@ -186,8 +186,13 @@ TEST(ForceLaws, TangentialDampingTimeAtThePeakForce)
   EXPECT_LT(viscous.tangential_damping_time(kR, kMass, sliding, 2 * v),
             viscous.tangential_damping_time(kR, kMass, sliding, v));
   for (const char *line : {"hertz 1e5 20", "hertz 1e5 20 tangential history 2e3 0.5",
-                           "hertz 1e5 20 rolling constant 0.1"})
+                           "hertz 1e5 20 rolling constant 0.1",
+                           "hertz 1e5 0 tangential history 2e3 0.5 xt 1"})
     EXPECT_EQ(parsed(line).tangential_damping_time(kR, kMass, sliding, v), HUGE_VAL) << line;
+  // the history dashpot: xt gamma_n at the deepest overlap
+  const ForceLaw damped = parsed("hertz 1e5 20 tangential history 2e3 0.5 xt 0.5");
+  EXPECT_NEAR(damped.tangential_damping_time(kR, kMass, sliding, v, ftm2v),
+              sliding / ftm2v / (0.5 * 20 * std::sqrt(xi)), 1e-12 * sliding);
 }
 
 // The largest m (r x t) . I^-1 (r x t) of a solid ellipsoid with semi-axes s over sampled
@@ -273,6 +278,48 @@ TEST(ForceLaws, HistoryTangentialSpringAndCoulombCap)
   const Vec3 t(turned[0], turned[1], turned[2]);
   EXPECT_NEAR(t.dot(g.normal), 0.0, 1e-20);
   EXPECT_NEAR(t.norm(), 2e-6, 1e-20);
+}
+
+// The dashpot of "tangential history kt mu xt X": -xt gamma_n v_t added to the spring, gamma_n
+// the normal model's damping coefficient at the contact; sliding, the spring keeps the share
+// of the Coulomb force the dashpot leaves (LAMMPS's tangential linear_history).
+TEST(ForceLaws, HistoryTangentialDashpot)
+{
+  const double K = 40, xt = 0.7, dt = 1e-4;
+  const ForceLaw law = parsed("hertz 1e5 40 tangential history 1e3 0.5 xt 0.7");
+  const double gamma_n = K * std::sqrt(kOverlap), fn = 1e5 * std::pow(kOverlap, 1.5);
+  double s[HistoryTangential::HISTORY_SIZE] = {};
+  const Vec3 slow(1e-3, -2e-3, 0);
+  ContactForce f = law.compute(geometry(), motion(slow), dt, s);
+  EXPECT_LT((Vec3(s[0], s[1], s[2]) - slow * dt).norm(), 1e-20);
+  const Vec3 expected_t = -1e3 * slow * dt - xt * gamma_n * slow;
+  EXPECT_LT((Vec3(f.force_i.x(), f.force_i.y(), 0) - expected_t).norm(),
+            1e-14 * expected_t.norm());
+  // sliding: |F_t| = mu F_n, and -kt s is what remains after the dashpot
+  const Vec3 fast(0, 5.0, 0);
+  f = law.compute(geometry(), motion(fast), dt, s);
+  const Vec3 ft(f.force_i.x(), f.force_i.y(), 0);
+  EXPECT_NEAR(ft.norm(), 0.5 * fn, 1e-14 * fn);
+  EXPECT_LT((-1e3 * Vec3(s[0], s[1], s[2]) - (ft + xt * gamma_n * fast)).norm(), 1e-13 * fn);
+  // xt absent is xt 0: the spring alone, to the bit
+  double a[3] = {1e-7, 2e-7, 0}, b[3] = {1e-7, 2e-7, 0};
+  const ContactForce plain = parsed("hertz 1e5 40 tangential history 1e3 0.5")
+                                 .compute(geometry(), motion(slow), dt, a);
+  const ContactForce zero = parsed("hertz 1e5 40 tangential history 1e3 0.5 xt 0")
+                                .compute(geometry(), motion(slow), dt, b);
+  EXPECT_EQ(plain.force_i, zero.force_i);
+  EXPECT_EQ(Vec3(a[0], a[1], a[2]), Vec3(b[0], b[1], b[2]));
+  // the dashpot of hertz/material: xt times the restitution damping
+  const ForceLaw material = parsed("hertz/material 1e7 0.3 0.5 tangential history 1e3 10 xt 2");
+  const double log_e = std::log(0.5), beta = log_e / std::sqrt(log_e * log_e + M_PI * M_PI);
+  const double e_star = 1e7 / (2 * (1 - 0.09));
+  const double gamma_m =
+      -2 * std::sqrt(5.0 / 6) * beta * std::sqrt(2 * e_star * std::sqrt(kR * kOverlap) * kMass);
+  double m[3] = {};
+  f = material.compute(geometry(), motion(slow), dt, m);
+  const Vec3 expected_m = -1e3 * slow * dt - 2 * gamma_m * slow;
+  EXPECT_LT((Vec3(f.force_i.x(), f.force_i.y(), 0) - expected_m).norm(),
+            1e-12 * expected_m.norm());
 }
 
 TEST(ForceLaws, ConstantRollingTorque)
@@ -361,19 +408,24 @@ TEST(ForceLaws, MixingRules)
 // The record of restart files: its layout is fixed (old files must read), and it round-trips.
 TEST(ForceLaws, RestartRecordLayoutAndRoundTrip)
 {
-  // the previous version's 13 values, then rolling sds's three (appended: an old record is
-  // the start of a new one)
-  ASSERT_EQ(packed_law_size(), 16);
+  // the first version's 13 values, then rolling sds's three, then tangential history's
+  // optional xt (each appended: an old record is the start of a new one)
+  ASSERT_EQ(packed_law_size(), 17);
   const std::vector<double> hertz = pack_law(parsed("hertz 1e5 20 tangential viscous 0.5"));
-  EXPECT_EQ(hertz, (std::vector<double>{0, 0, 1e5, 20, 0, 0, 1, 1, 0.5, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(hertz,
+            (std::vector<double>{0, 0, 1e5, 20, 0, 0, 1, 1, 0.5, 0, 0, 0, 0, 0, 0, 0, 0}));
   const std::vector<double> material =
       pack_law(parsed("hertz/material 1e7 0.3 0.6 tangential history 1e3 0.4 rolling constant "
                       "0.1 limit_damping"));
   EXPECT_EQ(material,
-            (std::vector<double>{1, 1, 0, 0, 1e7, 0.3, 0.6, 2, 0, 1e3, 0.4, 1, 0.1, 0, 0, 0}));
+            (std::vector<double>{1, 1, 0, 0, 1e7, 0.3, 0.6, 2, 0, 1e3, 0.4, 1, 0.1, 0, 0, 0, 0}));
   const std::vector<double> sds = pack_law(parsed("hertz 1 2 rolling sds 3 4 5"));
-  EXPECT_EQ(sds, (std::vector<double>{0, 0, 1, 2, 0, 0, 1, 0, 0, 0, 0, 2, 0, 3, 4, 5}));
-  for (const auto &record : {hertz, material, sds}) {
+  EXPECT_EQ(sds, (std::vector<double>{0, 0, 1, 2, 0, 0, 1, 0, 0, 0, 0, 2, 0, 3, 4, 5, 0}));
+  const std::vector<double> damped =
+      pack_law(parsed("hertz 1 2 tangential history 3 0.4 xt 0.5 rolling sds 3 4 5"));
+  EXPECT_EQ(damped,
+            (std::vector<double>{0, 0, 1, 2, 0, 0, 1, 2, 0, 3, 0.4, 2, 0, 3, 4, 5, 0.5}));
+  for (const auto &record : {hertz, material, sds, damped}) {
     ForceLaw law;
     ASSERT_TRUE(unpack_law(record.data(), law));
     EXPECT_EQ(pack_law(law), record);
@@ -393,6 +445,19 @@ TEST(ForceLaws, ParameterRefusals)
   EXPECT_EQ(refusal("hertz/material 1e7 0.5 0.5"), "hertz/material nu must be in (-1, 0.5)");
   EXPECT_EQ(refusal("hertz/material 1e7 0.3 0"), "hertz/material e must be in (0, 1]");
   EXPECT_EQ(refusal("hertz 1 1 tangential history 0 0.5"), "tangential history kt must be > 0");
+  EXPECT_EQ(refusal("hertz 1 1 tangential history 1 0.5 xt -1"),
+            "tangential history xt must be >= 0");
+  EXPECT_EQ(refusal("hertz 1 1 tangential history 1 0.5 xt"),
+            "missing value for tangential history xt");
+  EXPECT_EQ(refusal("hertz 1 1 tangential history 1 0.5 xt x"),
+            "expected a number for tangential history xt, got 'x'");
+  EXPECT_EQ(refusal("hertz 1 1 tangential history 1"),
+            "missing argument(s) for tangential history kt mu");
+  {    // xt is history's word: after viscous the parse stops there, for the caller to refuse
+    ForceLaw law;
+    std::string error;
+    EXPECT_EQ(parse_force_law(split("hertz 1 1 tangential viscous 1 xt 1"), law, error), 6);
+  }
   EXPECT_EQ(refusal("hertz 1 1 rolling constant 1.5"), "rolling constant mu_r must be in [0, 1]");
   EXPECT_EQ(refusal("hertz 1 1 rolling sds 1 -1 0.1"), "rolling sds gamma_r must be >= 0");
   EXPECT_EQ(refusal("hertz 1 1 rolling sds 1 1"), "missing argument(s) for rolling sds k_r gamma_r mu_r");

@@ -5,8 +5,9 @@ The paper's viscous tangential law F_t = -mu F_n v_t is a dashpot whose coeffici
 peaks with the impact's normal force; velocity Verlet integrates a dashpot stably only below
 two damping times. The rule's damping time is therefore the shorter of the normal m*/gamma at
 the deepest overlap and the tangential m_t/(mu F_peak) at the peak force (m_t: the mass for
-sliding, rotation included). Without the tangential part the rule's dt was several times the
-tangential damping time and the first impacts threw atoms out of the box.
+sliding, rotation included); for the history spring's dashpot xt, m_t/(xt gamma_n). Without
+the tangential part the rule's dt was several times the tangential damping time and the first
+impacts threw atoms out of the box.
 
 The scene is examples/deposit/in.deposit at N 100 with the particles released at vdrop 8, so
 that they hit the ground at the speed of the N 600 default (about 9.8 against 9.1) after a
@@ -21,6 +22,7 @@ import ed_helpers_pour as h
 
 LAWS = {
     "coulomb": "history 2.0e3 0.5",    # the default
+    "coulomb_dashpot": "history 2.0e3 0.5 xt 1",    # the spring with its dashpot
     "viscous": "viscous 0.5",          # the paper's
     "frictionless": "none",
     "rolling": "history 2.0e3 0.5 rolling constant 0.1",
@@ -62,11 +64,12 @@ def test_every_law_pours_the_default_scene_without_loss(tmp_path, law, dr):
     assert kep < 0.1 * ztop
     rule, contact, damping, _ = (float(x) for x in RULE.search(log).groups())
     assert dt == pytest.approx(rule, rel=1e-5)
-    # the viscous law is bound by its tangential damping time, and the report says so
+    # the viscous law and the spring's dashpot are bound by their tangential damping time,
+    # and the report says so
     tangential = re.search(r"^Pair granular/ellipsoid: damping number \S+ \(types 1 1, impact "
                            r"speed \S+\): the time step over the damping time m_t/gamma_t "
                            r"(\S+) at the peak force \(tangential\)", log, re.M)
-    assert bool(tangential) == (law == "viscous")
+    assert bool(tangential) == (law in ("viscous", "coulomb_dashpot"))
     if tangential:
         assert float(tangential.group(1)) == pytest.approx(damping, rel=1e-5)
         assert 0.9 * damping < 0.06 * contact

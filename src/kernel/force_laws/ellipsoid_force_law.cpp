@@ -6,6 +6,7 @@
 #include "ellipsoid_force_law.h"
 
 #include <cmath>
+#include <utility>
 
 namespace EllipsoidDep {
 
@@ -44,11 +45,12 @@ double ForceLaw::tangential_damping_time(double effective_radius, double effecti
                                          double tangential_mass, double impact_speed,
                                          double ftm2v) const
 {
-  const double peak = visit_model(normal, [&](const auto &model) {
-    return model.peak_force(effective_radius, effective_mass, impact_speed, ftm2v);
+  const auto [peak, peak_damping] = visit_model(normal, [&](const auto &model) {
+    return std::pair(model.peak_force(effective_radius, effective_mass, impact_speed, ftm2v),
+                     model.peak_damping(effective_radius, effective_mass, impact_speed, ftm2v));
   });
   const double gamma = visit_model(tangential, [&](const auto &model) {
-    return model.damping_coefficient(peak);
+    return model.damping_coefficient(peak, peak_damping);
   });
   return gamma > 0.0 ? tangential_mass / ftm2v / gamma : HUGE_VAL;
 }
@@ -74,10 +76,11 @@ ContactForce ForceLaw::compute(const ContactGeometry &geometry, const ContactMot
   const double overlap_rate = v_rel.dot(n);    // d(xi)/dt > 0 while approaching
   const Vec3 v_tangent = v_rel - overlap_rate * n;
 
-  double fn = visit_model(normal, [&](const auto &model) {
+  const NormalForce normal_force = visit_model(normal, [&](const auto &model) {
     return model.normal_force(geometry.effective_radius, overlap, sqrt_overlap, overlap_rate,
                               motion.effective_mass);
   });
+  double fn = normal_force.force;
   // limit_damping: on fast separation the damping may exceed the elastic force; clip
   if (limit_damping && fn < 0.0) fn = 0.0;
   out.normal_force = fn;
@@ -87,7 +90,8 @@ ContactForce ForceLaw::compute(const ContactGeometry &geometry, const ContactMot
   // the history: the tangential model's slots, then the rolling model's (history_size())
   double *const tangential_history = history;
   visit_model(tangential, [&](const auto &model) {
-    model.add_force(n, v_tangent, fn_friction, dt, tangential_history, force);
+    model.add_force(n, v_tangent, fn_friction, normal_force.damping, dt, tangential_history,
+                    force);
   });
 
   out.force_i = force;

@@ -59,9 +59,10 @@ struct ForceLaw {
   // damping number, small
   double damping_time(double effective_radius, double effective_mass, double impact_speed,
                       double ftm2v = 1.0) const;
-  // m_t / gamma_t of the tangential model at the peak normal force of that impact (HUGE_VAL
-  // when it does not damp). tangential_mass: the effective mass for sliding at the contact,
-  // rotation included (rotational_compliance in ellipsoid_shape.h); the same bound on dt
+  // m_t / gamma_t of the tangential model at the peak normal force and the normal damping
+  // of the deepest overlap of that impact (HUGE_VAL when it does not damp). tangential_mass:
+  // the effective mass for sliding at the contact, rotation included (rotational_compliance
+  // in ellipsoid_shape.h); the same bound on dt
   double tangential_damping_time(double effective_radius, double effective_mass,
                                  double tangential_mass, double impact_speed,
                                  double ftm2v = 1.0) const;
@@ -96,7 +97,7 @@ using MaterialLookup = std::function<std::string(const std::string &name, Materi
 // Parses the force-law words shared by pair_coeff and the wall fix:
 //   hertz kn K | hertz/material E nu e | hertz/material NAME
 //   | hertz/material E e nu damping coeff_restitution   (LAMMPS pair granular's order)
-//   [tangential none | viscous mu | history kt mu]
+//   [tangential none | viscous mu | history kt mu [xt X]]
 //   [rolling none | constant mu_r | sds k_r gamma_r mu_r]
 //   [limit_damping]
 // Returns the number of words used; on error returns -1 and sets error to a message that
@@ -112,7 +113,8 @@ int parse_force_law(const std::vector<std::string> &words, ForceLaw &law, std::s
 std::string mix_laws(const ForceLaw &a, const ForceLaw &b, ForceLaw &mixed);
 
 // Restart layout: limit_damping, then per family the model's code and the parameters of
-// every model of the family, in registry and row order.
+// every model of the family, in registry and row order; then the optional rows the same way
+// (force_law_model.h): values added later come last, so an older record is a prefix.
 int packed_law_size();
 std::vector<double> pack_law(const ForceLaw &law);
 // false when a code is out of range (a corrupt or foreign record)

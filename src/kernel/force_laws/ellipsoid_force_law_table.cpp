@@ -108,15 +108,17 @@ namespace {
         }
       });
     }
-    // the model's code, then the parameters of every model (the defaults of the others)
-    void pack(const Variant &v, std::vector<double> &out) const
+    // the model's code, then the parameters of every model (the defaults of the others);
+    // optional: the optional rows of every model instead, without the code
+    void pack(const Variant &v, std::vector<double> &out, bool optional = false) const
     {
-      out.push_back(static_cast<double>(v.index()));
+      if (!optional) out.push_back(static_cast<double>(v.index()));
       for_each_model<Variant>([&](auto index) {
         using Model = ModelAt<Variant, index>;
         const Model *held = std::get_if<index>(&v);
         const Model model = held ? *held : Model();
-        for (const auto &row : Model::ROWS) out.push_back(model.*row.field);
+        for (const auto &row : Model::ROWS)
+          if (row.optional == optional) out.push_back(model.*row.field);
       });
     }
     bool unpack(const double *&in, Variant &v) const
@@ -125,20 +127,30 @@ namespace {
       if (!(code >= 0.0 && code < static_cast<double>(COUNT) && code == std::floor(code)))
         return false;
       for_each_model<Variant>([&](auto index) {
-        using Model = ModelAt<Variant, index>;
-        const double *values = in;
-        in += Model::ROWS.size();
-        if (index != static_cast<std::size_t>(code)) return;
-        Model &model = v.template emplace<index>();
-        for (const auto &row : Model::ROWS) model.*row.field = *values++;
+        if (index == static_cast<std::size_t>(code)) v.template emplace<index>();
       });
+      read_rows(in, v, false);
       return true;
     }
-    static int packed_size()
+    // the rows of every model that pack(optional) wrote, into the model v holds
+    void read_rows(const double *&in, Variant &v, bool optional) const
     {
-      int size = 1;
       for_each_model<Variant>([&](auto index) {
-        size += static_cast<int>(ModelAt<Variant, index>::ROWS.size());
+        using Model = ModelAt<Variant, index>;
+        Model *held = std::get_if<index>(&v);
+        for (const auto &row : Model::ROWS) {
+          if (row.optional != optional) continue;
+          if (held) held->*row.field = *in;
+          ++in;
+        }
+      });
+    }
+    static int packed_size(bool optional = false)
+    {
+      int size = optional ? 0 : 1;
+      for_each_model<Variant>([&](auto index) {
+        for (const auto &row : ModelAt<Variant, index>::ROWS)
+          if (row.optional == optional) ++size;
       });
       return size;
     }
@@ -180,28 +192,50 @@ namespace {
           family.expected() + ")";
       return false;
     }
+    // the model's numbers in row order, then its optional rows as "word value"
     template <class Variant> bool numbers(const Family<Variant> &family, Variant &v)
     {
       return visit_model(v, [&](auto &model) {
         const std::string label = family.label(v);
-        if (k + model.ROWS.size() > words.size()) {
-          std::string signature = label;
-          for (const auto &row : model.ROWS) signature += std::string(" ") + row.word;
+        std::size_t count = 0;
+        std::string signature = label;
+        for (const auto &row : model.ROWS)
+          if (!row.optional) {
+            ++count;
+            signature += std::string(" ") + row.word;
+          }
+        if (k + count > words.size()) {
           error = "missing argument(s) for " + signature;
           return false;
         }
-        for (const auto &row : model.ROWS) {
-          if (!to_number(words[k], model.*row.field)) {
-            error = "expected a number for " + label + " " + row.word + ", got '" + words[k] + "'";
-            return false;
-          }
-          ++k;
+        for (const auto &row : model.ROWS)
+          if (!row.optional && !number(label + " " + row.word, model.*row.field)) return false;
+        for (bool found = true; found && !done();) {
+          found = false;
+          for (const auto &row : model.ROWS)
+            if (!found && row.optional && words[k] == row.word) {
+              found = true;
+              if (++k >= words.size()) {
+                error = "missing value for " + label + " " + row.word;
+                return false;
+              }
+              if (!number(label + " " + row.word, model.*row.field)) return false;
+            }
         }
         return true;
       });
     }
 
    private:
+    bool number(const std::string &what, double &value)
+    {
+      if (!to_number(words[k], value)) {
+        error = "expected a number for " + what + ", got '" + words[k] + "'";
+        return false;
+      }
+      ++k;
+      return true;
+    }
     const std::vector<std::string> &words;
     std::string &error;
   };
@@ -307,7 +341,8 @@ std::string mix_laws(const ForceLaw &a, const ForceLaw &b, ForceLaw &mixed)
 
 int packed_law_size()
 {
-  return 1 + NORMAL.packed_size() + TANGENTIAL.packed_size() + ROLLING.packed_size();
+  return 1 + NORMAL.packed_size() + TANGENTIAL.packed_size() + ROLLING.packed_size() +
+      NORMAL.packed_size(true) + TANGENTIAL.packed_size(true) + ROLLING.packed_size(true);
 }
 
 std::vector<double> pack_law(const ForceLaw &law)
@@ -317,14 +352,22 @@ std::vector<double> pack_law(const ForceLaw &law)
   NORMAL.pack(law.normal, out);
   TANGENTIAL.pack(law.tangential, out);
   ROLLING.pack(law.rolling, out);
+  NORMAL.pack(law.normal, out, true);
+  TANGENTIAL.pack(law.tangential, out, true);
+  ROLLING.pack(law.rolling, out, true);
   return out;
 }
 
 bool unpack_law(const double *values, ForceLaw &law)
 {
   law.limit_damping = *values++ != 0.0;
-  return NORMAL.unpack(values, law.normal) && TANGENTIAL.unpack(values, law.tangential) &&
-      ROLLING.unpack(values, law.rolling);
+  if (!NORMAL.unpack(values, law.normal) || !TANGENTIAL.unpack(values, law.tangential) ||
+      !ROLLING.unpack(values, law.rolling))
+    return false;
+  NORMAL.read_rows(values, law.normal, true);
+  TANGENTIAL.read_rows(values, law.tangential, true);
+  ROLLING.read_rows(values, law.rolling, true);
+  return true;
 }
 
 }    // namespace EllipsoidDep

@@ -10,12 +10,18 @@
      HISTORY_SIZE  doubles of per-contact history it keeps (named slots in its header), each
                    of which changes sign when i and j swap (ellipsoid_pair_history.h)
    and the equation of its force as a comment. What each family's models answer:
-     normal      normal_force(R*, xi, sqrt(xi), dxi/dt, m*): F_n > 0 repulsive; and, for a
-                 head-on impact at relative normal speed v (ftm2v: see ellipsoid_force_law.h)
-                 stiffness(R*), deepest_overlap, peak_force, contact_time, damping_time;
-                 ELASTIC_LAW, the name reports give its contact time ("Hertz")
-     tangential  add_force(n, v_t, max(F_n, 0), dt, its history, force on i);
-                 damping_coefficient(F_n), its dF_t / dv_t at the normal force F_n (0: none)
+     normal      normal_force(R*, xi, sqrt(xi), dxi/dt, m*): NormalForce, F_n > 0 repulsive
+                 and its damping coefficient; and, for a head-on impact at relative normal
+                 speed v (ftm2v: see ellipsoid_force_law.h) stiffness(R*), deepest_overlap,
+                 peak_force, peak_damping, contact_time, damping_time; ELASTIC_LAW, the name
+                 reports give its contact time ("Hertz")
+     tangential  add_force(n, v_t, max(F_n, 0), gamma_n, dt, its history, force on i);
+                 damping_coefficient(F_n, gamma_n), its dF_t / dv_t at the normal force F_n
+                 and normal damping coefficient gamma_n (0: none)
+   A row marked optional is a keyword parameter: given as "word value" after the model's
+   numbers, its default the field's initialiser; the restart record stores it after every
+   family's models (ellipsoid_force_law_table.cpp), so a record without it is the start of
+   one with it.
      rolling     add_torque(n, motion, R*, max(F_n, 0), dt, its history, ContactForce)
 ------------------------------------------------------------------------- */
 
@@ -39,6 +45,12 @@ struct ContactMotion {
   Vec3 omega_i = Vec3::Zero(), omega_j = Vec3::Zero();      // angular velocities (box frame)
   Vec3 branch_i = Vec3::Zero(), branch_j = Vec3::Zero();    // contact point minus centres
   double effective_mass = 0.0;                              // m_i m_j / (m_i + m_j); m_i for a wall
+};
+
+// What a normal model answers at a contact.
+struct NormalForce {
+  double force;      // F_n, > 0 repulsive
+  double damping;    // gamma_n = dF_n / d(dxi/dt) (0: undamped)
 };
 
 struct ContactForce {
@@ -77,6 +89,7 @@ template <class Model> struct ParameterRow {
   Range range;
   Mix mix;
   double Model::*poisson = nullptr;    // ReducedModulus: the Poisson ratio it pairs with
+  bool optional = false;               // a keyword parameter (see the top of this file)
 };
 
 // Calls f with the model a family's variant holds: an if-chain the compiler inlines, and no

@@ -3,9 +3,11 @@
    force_law_model.h for what it declares) and its type at the end of its family's list.
 
    A model's place in its list is its code in restart files, and the restart record holds
-   the parameters of every model of a family in list order (ellipsoid_force_law_table.cpp):
-   append, never reorder or remove, or old restart files misread. The first model of a list
-   is a law's default.
+   the parameters of every model of a family in list order, then the optional rows
+   (ellipsoid_force_law_table.cpp): append, never reorder or remove, or old restart files
+   misread. The pair reads a record of an earlier version when it is the start of this one's
+   (its APPENDED_LAW_VALUES): a new optional row keeps that, a new model's rows (now before the
+   optional rows) do not. The first model of a list is a law's default.
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_FORCE_LAW_REGISTRY_H

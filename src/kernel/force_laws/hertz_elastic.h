@@ -12,14 +12,17 @@
      contact time     t_c = 2 xi_max / v  int_0^1 (1 - u^(5/2))^(-1/2) du
                           = 2 (2/5) B(2/5, 1/2) xi_max / v  ~ 3.218 (m^2 / (k^2 v))^(1/5)
      peak force       k xi_max^(3/2), the elastic force there
-     damping time     m / gamma(R*, xi_max, m*), HUGE_VAL without damping: velocity Verlet
-                      integrates a damper stably only for dt below twice it. gamma takes m*
+     damping time     m / gamma(R*, xi_max, m*) (peak_damping: that gamma), HUGE_VAL
+                      without damping: velocity Verlet integrates a damper stably only for
+                      dt below twice it. gamma takes m*
                       in mass units as given (LAMMPS pair granular's convention for the
                       restitution damping), the time divides the inertia by it.
 ------------------------------------------------------------------------- */
 
 #ifndef ELLIPSOID_DEP_HERTZ_ELASTIC_H
 #define ELLIPSOID_DEP_HERTZ_ELASTIC_H
+
+#include "force_law_model.h"
 
 #include <cmath>
 
@@ -35,11 +38,13 @@ template <class Model> struct HertzElastic {
   static constexpr int HISTORY_SIZE = 0;
   static constexpr const char *ELASTIC_LAW = "Hertz";
 
-  double normal_force(double effective_radius, double overlap, double sqrt_overlap,
-                      double overlap_rate, double effective_mass) const
+  NormalForce normal_force(double effective_radius, double overlap, double sqrt_overlap,
+                           double overlap_rate, double effective_mass) const
   {
-    return model().stiffness(effective_radius) * overlap * sqrt_overlap +
-        model().damping_coefficient(effective_radius, sqrt_overlap, effective_mass) * overlap_rate;
+    const double damping = model().damping_coefficient(effective_radius, sqrt_overlap,
+                                                       effective_mass);
+    return {model().stiffness(effective_radius) * overlap * sqrt_overlap + damping * overlap_rate,
+            damping};
   }
   double deepest_overlap(double effective_radius, double effective_mass, double impact_speed,
                          double ftm2v) const
@@ -60,16 +65,20 @@ template <class Model> struct HertzElastic {
     return hertz_contact_time(model().stiffness(effective_radius), effective_mass / ftm2v,
                               impact_speed);
   }
+  // gamma at the deepest overlap
+  double peak_damping(double effective_radius, double effective_mass, double impact_speed,
+                      double ftm2v) const
+  {
+    return model().damping_coefficient(
+        effective_radius,
+        std::sqrt(deepest_overlap(effective_radius, effective_mass, impact_speed, ftm2v)),
+        effective_mass);
+  }
   double damping_time(double effective_radius, double effective_mass, double impact_speed,
                       double ftm2v) const
   {
-    const double inertia = effective_mass / ftm2v;
-    const double gamma = model().damping_coefficient(
-        effective_radius,
-        std::sqrt(
-            hertz_deepest_overlap(model().stiffness(effective_radius), inertia, impact_speed)),
-        effective_mass);
-    return gamma > 0.0 ? inertia / gamma : HUGE_VAL;
+    const double gamma = peak_damping(effective_radius, effective_mass, impact_speed, ftm2v);
+    return gamma > 0.0 ? effective_mass / ftm2v / gamma : HUGE_VAL;
   }
 
  private:

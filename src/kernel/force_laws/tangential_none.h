@@ -14,10 +14,14 @@ struct NoTangential {
   static constexpr std::array<ParameterRow<NoTangential>, 0> ROWS{};
   static constexpr int HISTORY_SIZE = 0;
 
-  double damping_coefficient(double /*normal_force*/) const { return 0.0; }
+  double damping_coefficient(double /*normal_force*/, double /*normal_damping*/) const
+  {
+    return 0.0;
+  }
 
   void add_force(const Vec3 & /*normal*/, const Vec3 & /*v_tangent*/, double /*fn_friction*/,
-                 double /*dt*/, double * /*history*/, Vec3 & /*force*/) const
+                 double /*normal_damping*/, double /*dt*/, double * /*history*/,
+                 Vec3 & /*force*/) const
   {
   }
 };

@@ -27,10 +27,13 @@ struct ViscousTangential {
   static constexpr int HISTORY_SIZE = 0;
 
   // dF_t / dv_t at the normal force F_n
-  double damping_coefficient(double normal_force) const { return mu * normal_force; }
+  double damping_coefficient(double normal_force, double /*normal_damping*/) const
+  {
+    return mu * normal_force;
+  }
 
-  void add_force(const Vec3 & /*normal*/, const Vec3 &v_tangent, double fn_friction, double /*dt*/,
-                 double * /*history*/, Vec3 &force) const
+  void add_force(const Vec3 & /*normal*/, const Vec3 &v_tangent, double fn_friction,
+                 double /*normal_damping*/, double /*dt*/, double * /*history*/, Vec3 &force) const
   {
     force -= mu * fn_friction * v_tangent;
   }
