@@ -1,7 +1,8 @@
 """The cost curve's tables on made-up rows and logs whose answers are known.
 bench/cost_curve/cost_table.py: the medians, the time and contacts per particle-step, the memory
 per particle, the communication's share summed over a log's runs, the first checks at which
-each rest condition held, and the exponents in N. bench/cost_curve/run_replicate.py: the last
+each rest condition held, and the exponents in N; bench/cost_curve/cost_extrapolation.py: the
+extrapolation to more particles and ranks. bench/cost_curve/run_replicate.py: the last
 run's loop time, CPU use, section shares and contacts (the difference of cumulative counters)."""
 import csv
 import math
@@ -15,6 +16,7 @@ from conftest import root_dir, subprocess_env
 
 sys.path.insert(0, os.path.join(root_dir(), "bench", "cost_curve"))
 import cachegrind_replicate    # noqa: E402
+import cost_extrapolation    # noqa: E402
 import cost_table    # noqa: E402
 import run_replicate    # noqa: E402
 
@@ -116,7 +118,7 @@ def test_one_fit_per_rank_count(tmp_path):
     assert fits[1]["cpu_seconds"] == pytest.approx(1.0)
     assert fits[2]["cpu_seconds"] == pytest.approx(1.5)
     assert fits[2]["us_per_particle_step"] == pytest.approx(0.5)
-    assert cost_table.base_size(sizes) == (16000, 2)
+    assert cost_extrapolation.base_size(sizes) == (16000, 2)
     table = (tmp_path / "out" / "table.md").read_text()
     assert "Exponents in N at 1 rank (log-log least squares over 3 sizes): CPU to deposit 1.000" \
         in table
@@ -191,13 +193,14 @@ def test_extrapolation_by_hand(tmp_path):
     communication 0.1 of the loop): its box 4 times as wide, so on 16 ranks (4 x 4) each rank's
     subdomain is the measured box, with the measured ghosts and time per particle-step"""
     for a, b, w in ((4.5, 4.5, 0.3), (10.0, 3.0, 1.7)):
-        assert cost_table.ghost_width(cost_table.ghost_ratio(w, a, b), a, b) == pytest.approx(w)
-    assert [cost_table.rank_grid(p) for p in (1, 2, 6, 16, 64)] == \
+        ratio = cost_extrapolation.ghost_ratio(w, a, b)
+        assert cost_extrapolation.ghost_width(ratio, a, b) == pytest.approx(w)
+    assert [cost_extrapolation.rank_grid(p) for p in (1, 2, 6, 16, 64)] == \
         [(1, 1), (2, 1), (3, 2), (4, 4), (8, 8)]
     make_runs(tmp_path)
     sizes = cost_table.per_size(cost_table.load([str(tmp_path)]), 2000)
     assert sizes[(16000, 1)]["ghost_ratio"] == 0.5 and sizes[(16000, 1)]["box"] == (4.5, 4.5)
-    e = cost_table.extrapolate(sizes, 0.1, n=16 * 16000, cores=(1, 16))
+    e = cost_extrapolation.extrapolate(sizes, 0.1, n=16 * 16000, cores=(1, 16))
     assert e["base"] == (16000, 1) and e["steps"] == pytest.approx(2000 * 16 ** 0.1)
     grid, g, t, hours = e["cores"][16]
     assert grid == (4, 4) and g == pytest.approx(0.5) and t == pytest.approx(1.0)

@@ -1,0 +1,1 @@
+"""The tables of bench/run_bench.py, one module each, and the LAMMPS runs they share."""
