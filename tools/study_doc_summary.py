@@ -12,9 +12,8 @@ from study_doc_forces import LINE_NAMES, mirror_text
 from study_stats import SIGMA
 
 def per_shape(m, digits):
-    """the shapes of a mean one by one (their number and verdict), or the mean"""
-    if m.get("per_shape") and m["per_shape"][0]["shape"] and m["n"] <= 6 and \
-            "mean_verdict" in m:
+    """the shapes of a mean one by one where they are few, else the mean"""
+    if m.get("per_shape") and m["per_shape"][0]["shape"] and m["n"] <= 6:
         return "; ".join("%s %s" % (shape(r["shape"]), signed(r["difference"], r["se"], digits))
                          for r in m["per_shape"])
     return "mean over %d shapes %s" % (m["n"], signed(m["mean"], m["se"], digits))
