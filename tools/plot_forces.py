@@ -72,7 +72,7 @@ def ac_axis(ax):
     """a/c on a log scale with plain numbers at readable steps"""
     ax.set_xscale("log")
     ax.set_xticks(AC_TICKS)
-    ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: "%g" % v))
     ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.set_xlabel("total aspect ratio a/c = eta zeta")
     ax.grid(alpha=0.3)

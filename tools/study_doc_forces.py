@@ -19,14 +19,19 @@ def fit_cell(t):
     return z_cell(t) + lack
 
 
+def mirror_meaning(m):
+    """what the correlation of K0 with a_f says at 3 sigma"""
+    if m["p"] >= 0.0027:
+        return "not decided at 3 sigma"
+    return MIRROR_MEANING if m["r"] < 0 else "K0 and a_f rise together"
+
+
 def mirror_text(m):
     if m is None:
         return "K0 against a_f seed by seed: fewer than 3 degrees of freedom."
     return ("K0 against a_f seed by seed (each about its shape's mean, %d deposits of %d "
             "shapes): r = %.2f (p = %.1g, t with %d dof): %s."
-            % (m["deposits"], m["shapes"], m["r"], m["p"], m["dof"],
-               MIRROR_MEANING if m["r"] < 0 and m["p"] < 0.0027 else
-               "not decided at 3 sigma" if m["p"] >= 0.0027 else "they move together"))
+            % (m["deposits"], m["shapes"], m["r"], m["p"], m["dof"], mirror_meaning(m)))
 
 
 def forces_block(data):

@@ -8,7 +8,7 @@ import math
 from study_doc_claims import brief, pm, shape, signed, table
 from study_doc_depth import depth_share, finite_size_bound, matched
 from study_doc_paper import diff
-from study_doc_forces import LINE_NAMES, mirror_text
+from study_doc_forces import LINE_NAMES, mirror_meaning
 from study_stats import SIGMA
 
 def per_shape(m, digits):
@@ -106,7 +106,7 @@ def summary_rows(data):
     if mirror:
         rows.append(["K0 mirrors a_f seed by seed", "r = %.2f (%d deposits)"
                      % (mirror["r"], mirror["deposits"]),
-                     mirror_text(mirror).split("): ", 1)[1].rstrip(".")])
+                     mirror_meaning(mirror)])
     b = finite_size_bound(data)
     if b:
         label, bound, small, large = b
