@@ -37,6 +37,14 @@ def z_cell(entry):
                                        z_text(entry["z_equivalent"]))
 
 
+def fit_cell(t):
+    """a slope's significance, with its lack of fit where the points leave the line"""
+    lack = ("; chi^2 %.1f on %d dof about the line (p = %.1g): error scaled by the Birge ratio "
+            "%.2f" % (t["chi2"], t["chi2_dof"], t["chi2_p"], t["birge_ratio"])
+            if t.get("lack_of_fit") else "")
+    return z_cell(t) + lack
+
+
 def shape(s):
     return "(%g, %g)" % tuple(s)
 
@@ -170,9 +178,10 @@ def fall_back_rows(v):
             if key in f:
                 s = f[key]
                 rows.append(["Z falls back along eta = zeta, %s: %s" % (tag, label),
-                             "%s per unit eta (%g to %g, %d points)"
-                             % (pm(s["slope"], s["se"], 3), s["from"], s["to"], s["points"]),
-                             z_cell(s), s["verdict"]])
+                             "%s per unit eta (%g to %g, %d points; chi^2 %.1f on %d dof about "
+                             "the line)" % (pm(s["slope"], s["se"], 3), s["from"], s["to"],
+                                            s["points"], s["chi2"], s["chi2_dof"]),
+                             fit_cell(s), s["verdict"]])
         for key, label in (("end_minus_peak", "Z%s - Z%s (end - highest)"),
                            ("end_minus_highest_spheroid", "Z%s - Z%s (end - highest spheroid)")):
             if key in f:

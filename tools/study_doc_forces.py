@@ -1,7 +1,7 @@
 """doc/study.md's contact-force tables and the abstract's row of the claims table
 (tools/study_doc.py): the force measures of the deposits with window means (claims.json
 `forces`, `force_mirror`; tools/study_forces.py), per shape and their trends along the lines."""
-from study_doc_claims import pm, shape, table, z_cell
+from study_doc_claims import fit_cell, pm, shape, table, z_cell
 from study_forces import MEASURES, NAMES, shape_of_trend
 
 LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
@@ -9,14 +9,6 @@ LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
 MIRROR_MEANING = ("a deposit whose vertical contacts carry more than their share of the force "
                   "(a_f above its shape's mean) has less horizontal stress (K0 below its "
                   "shape's mean)")
-
-
-def fit_cell(t):
-    """a slope's significance, with its lack of fit where the points leave the line"""
-    lack = ("; chi^2 %.1f on %d dof about the line (p = %.1g): error scaled by the Birge ratio "
-            "%.2f" % (t["chi2"], t["chi2_dof"], t["chi2_p"], t["birge_ratio"])
-            if t.get("lack_of_fit") else "")
-    return z_cell(t) + lack
 
 
 def mirror_meaning(m):
