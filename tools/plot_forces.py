@@ -5,8 +5,9 @@
 force measures; (b) K0 against a/c on each line; (c) the mean normal force in each direction
 over the mean force, fbar(theta) / <f> (compute contact/histo weight force, column 4 over the
 mean force); (d) P(f / <f>) of the normal forces (compute force/histo), on a log scale. (c) and
-(d) per shape over the deposits with window means (packing.dat's window_steps > 0) that have
-the force histograms, with the seed SD pooled over the shapes per bin / sqrt(seeds).
+(d) per shape over the deposits with window means (packing.dat's window_steps > 0; their
+histograms are those of the window's last step), with the seed SD pooled over the shapes per
+bin / sqrt(seeds).
 """
 import math
 import os
