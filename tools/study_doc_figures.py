@@ -27,11 +27,11 @@ FIGURES = (
     ("study/figures/fig_z_map.png, fig_z_norattler_map.png", "Fig. 6 (fig:coordnum)",
      "Z over (eta, zeta), with and without rattlers", FIGURES_CMD, "`map`, `diagonal`"),
     ("study/figures/fig_contact_shapes.png", "Fig. 7a (fig:contact-hist)", "P(Omega(theta)) of "
-     "the contact normals per shape", FIGURES_CMD, "`map`, `diagonal`, `fall_back`"),
+     "the contact normals per shape", FIGURES_CMD, "`map`, `diagonal`"),
     ("study/figures/fig_contact_dr.png", "Fig. 7b (fig:contact-hist)", "the same for (1.6, 1.8) "
      "at each delta_r", FIGURES_CMD, "`map`, `polydisperse`"),
     ("study/figures/fig_orient_shapes.png", "Fig. 8 (fig:orient-hist)", "P(Omega(theta)) of "
-     "the long axes per shape", FIGURES_CMD, "`map`, `diagonal`, `fall_back`"),
+     "the long axes per shape", FIGURES_CMD, "`map`, `diagonal`"),
     ("study/figures/fig_density_laws.png", "-", "phi on the diagonal per tangential law",
      FIGURES_CMD, "`diagonal`, `viscous_diagonal`"),
     ("study/figures/fig_forces.png", "- (the abstract's claim)", "a_n, a_f, a_n + a_f; K0; "
