@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A colour bar for the deposit's picture (in.deposit's dump image, Fig. 3 of the paper).
+"""A colour bar for the deposit's picture (in.deposit's dump image, Fig. 4 of the paper).
 
     ./ellipsoid-dep python tools/picture_colorbar.py deposit.png [--out with_bar.png]
 

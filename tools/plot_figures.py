@@ -11,17 +11,18 @@ most points), except fig_density_laws.png, which compares the laws at that N. Ev
 and error map is a standard error from the seed SD pooled per group of shapes
 (tools/study_stats.py: spheroids, general shapes below and above a/c = 4, per delta_r and law)
 / sqrt(the point's seeds); per bin for the histograms. Writes into DIR (default: the table's
-folder) PNG files:
-  fig_sizes.png           V(r) and n(r) for several alpha, beta, a deposit's sizes     (Fig. 2)
-  fig_density_map.png     phi over (eta, zeta), lowest delta_r, and its error map      (Fig. 4a)
+folder) PNG files (the paper's figures numbered as in its LaTeX source, whose Fig. 2 is the
+contact algorithm's flow chart):
+  fig_sizes.png           V(r) and n(r) for several alpha, beta, a deposit's sizes     (Fig. 3)
+  fig_density_map.png     phi over (eta, zeta), lowest delta_r, and its error map      (Fig. 5a)
   fig_density_lines.png   phi along eta = zeta, prolate and oblate; the same near the
-                          maxima with the fits; eta = zeta for each delta_r             (Fig. 4b)
-  fig_z_map.png           Z over (eta, zeta) and its error map                          (Fig. 5)
+                          maxima with the fits; eta = zeta for each delta_r             (Fig. 5b)
+  fig_z_map.png           Z over (eta, zeta) and its error map                          (Fig. 6)
   fig_z_norattler_map.png the same without rattlers
-  fig_contact_shapes.png  P(Omega(theta)) of contact normals for several shapes      (Fig. 6a)
+  fig_contact_shapes.png  P(Omega(theta)) of contact normals for several shapes      (Fig. 7a)
   fig_contact_dr.png      the same for (1.6, 1.8) (else the shape with the most delta_r)
-                          at each delta_r                                             (Fig. 6b)
-  fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes        (Fig. 7)
+                          at each delta_r                                             (Fig. 7b)
+  fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes        (Fig. 8)
   fig_density_laws.png    phi along eta = zeta at the lowest delta_r, one curve per law
   fig_forces.png          the contact forces along eta = zeta: anisotropies and K0 against
                           a/c, force by direction, P(f/<f>) (tools/plot_forces.py)
@@ -55,7 +56,7 @@ PI_TICKS = ([0, math.pi / 5, math.pi / 4, math.pi / 3, math.pi / 2, 3 * math.pi 
 LINES = (("eta = zeta (vs eta)", lambda e, z: e == z, 0, "o-"),
          ("prolate, zeta = 1 (vs eta)", lambda e, z: z == 1.0, 0, "s--"),
          ("oblate, eta = 1 (vs zeta)", lambda e, z: e == 1.0, 1, "^-."))
-FIG6B = (1.6, 1.8)    # the paper's shape of Fig. 6b
+FIG6B = (1.6, 1.8)    # the paper's shape of Fig. 7b (its LaTeX's numbers, as above)
 
 
 def load(path):

@@ -1,12 +1,13 @@
 """fig_forces.png of the study (tools/plot_figures.py): the contact forces along eta = zeta.
 
-(a) a_n, a_f, a_n + a_f and K0 against a/c with their pooled standard errors (claims.json
+(a) a_n, a_f and a_n + a_f against a/c with their pooled standard errors (claims.json
 `forces`, tools/study_forces.py), and a_n + a_f along the spheroid lines where they have the
-force measures; (b) the mean normal force in each direction over the mean
-force, fbar(theta) / <f> (compute contact/histo weight force, column 4 over the mean force);
-(c) P(f / <f>) of the normal forces (compute force/histo), on a log scale. (b) and (c) per
-shape over the deposits that have the force histograms, with the seed SD pooled over the
-shapes per bin / sqrt(seeds).
+force measures; (b) K0 against a/c on each line; (c) the mean normal force in each direction
+over the mean force, fbar(theta) / <f> (compute contact/histo weight force, column 4 over the
+mean force); (d) P(f / <f>) of the normal forces (compute force/histo), on a log scale. (c) and
+(d) per shape over the deposits with window means (packing.dat's window_steps > 0; their
+histograms are those of the window's last step), with the seed SD pooled over the shapes per
+bin / sqrt(seeds).
 """
 import math
 import os
@@ -19,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from deposit_run import read_histo, read_packing  # noqa: E402
-from study_forces import MEASURES, NAMES  # noqa: E402
+from study_forces import NAMES  # noqa: E402
 from study_stats import Pooled  # noqa: E402
 
 FILES = {"direction": "contact_force_histo.dat", "magnitude": "force_histo.dat"}
@@ -34,7 +35,10 @@ def curves(deposits):
         paths = {k: os.path.join(d["folder"], f) for k, f in FILES.items()}
         if e != z or not all(os.path.exists(p) for p in paths.values()):
             continue
-        mean_force = read_packing(os.path.join(d["folder"], "packing.dat"))["mean_normal_force"]
+        pk = read_packing(os.path.join(d["folder"], "packing.dat"))
+        if not pk.get("window_steps", 0) > 0:    # a snapshot of a ringing bed
+            continue
+        mean_force = pk["mean_normal_force"]
         cols = read_histo(paths["direction"], columns=4)
         theta, fbar = np.asarray(cols[0]), np.asarray(cols[3]) / mean_force
         f, p = read_histo(paths["magnitude"], columns=2)
@@ -61,57 +65,79 @@ def mean_and_error(per_shape, kind):
     return {s: (x, y.mean(axis=0), err[s]) for s, y in ys.items()}
 
 
+AC_TICKS = [1, 1.5, 2, 3, 4, 6, 9, 16]
+LINE_STYLES = {"diagonal": "o-", "prolate": "v--", "oblate": "<:"}
+
+
+def ac_axis(ax):
+    """a/c on a log scale with plain numbers at readable steps"""
+    ax.set_xscale("log")
+    ax.set_xticks(AC_TICKS)
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: "%g" % v))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.set_xlabel("total aspect ratio a/c = eta zeta")
+    ax.grid(alpha=0.3)
+
+
+def errorbars(ax, rows, q, style, label, color=None):
+    ax.errorbar([r["a/c"] for r in rows], [r[q]["mean"] for r in rows],
+                yerr=[r[q]["se"] or 0 for r in rows], fmt=style, ms=5, capsize=3, label=label,
+                color=color)
+
+
 def figure(claims, deposits, path, tag):
     """the figure, or None (with a note) without the force measures"""
     lines = (claims or {}).get("forces") or {}
     forces = lines.get("diagonal")
     per_shape = curves(deposits)
     if forces is None or not per_shape:
-        print("  %s: skipped (no deposit with the force measures)" % os.path.basename(path))
+        print("  %s: skipped (no deposit with window means of the force measures)"
+              % os.path.basename(path))
         return None
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5))
-    ac = [r["a/c"] for r in forces["per_shape"]]
-    for q, style in zip(MEASURES, ("o-", "s-", "^-", "D--")):
-        axes[0].errorbar(ac, [r[q]["mean"] for r in forces["per_shape"]],
-                         yerr=[r[q]["se"] or 0 for r in forces["per_shape"]], fmt=style, ms=4,
-                         capsize=3, label=NAMES[q])
-    for line, style in (("prolate", "v:"), ("oblate", "<:")):
+    plt.rcParams.update({"font.size": 11})
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
+    (a, k0), (direction, magnitude) = axes
+    for q, style in zip(("a_n", "a_f", "a_total"), ("o-", "s-", "^-")):
+        errorbars(a, forces["per_shape"], q, style, NAMES[q] + ", eta = zeta")
+    for line in ("prolate", "oblate"):
         if line in lines:
-            rows = lines[line]["per_shape"]
-            axes[0].errorbar([r["a/c"] for r in rows], [r["a_total"]["mean"] for r in rows],
-                             yerr=[r["a_total"]["se"] or 0 for r in rows], fmt=style, ms=4,
-                             capsize=3, label="a_n + a_f, %s line" % line)
-    axes[0].set_xscale("log")
-    axes[0].xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
-    axes[0].xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-    axes[0].set_xlabel("a/c = eta zeta (eta = zeta unless labelled)")
-    axes[0].set_title("(a) anisotropies and K0, %d deposits"
-                      % sum(f["deposits"] for f in lines.values()), fontsize=9)
-    axes[0].axhline(0, color="gray", lw=0.5)
-    axes[0].legend(fontsize=8)
+            errorbars(a, lines[line]["per_shape"], "a_total", LINE_STYLES[line],
+                      "a_n + a_f, %s line" % line)
+    ac_axis(a)
+    a.axhline(0, color="gray", lw=0.5)
+    a.set_ylabel("anisotropy coefficient")
+    a.set_title("(a) contact normals a_n, forces a_f and their sum, %d deposits"
+                % sum(f["deposits"] for f in lines.values()))
+    a.legend(fontsize=9)
+    for line, f in lines.items():
+        errorbars(k0, f["per_shape"], "K0", LINE_STYLES[line], "%s line" % line)
+    ac_axis(k0)
+    k0.set_ylabel("K0 = (sigma_xx + sigma_yy) / (2 sigma_zz)")
+    k0.set_title("(b) lateral stress ratio K0")
+    k0.legend(fontsize=9)
     colors = dict(zip(sorted(per_shape), plt.cm.viridis(np.linspace(0, 0.95, len(per_shape)))))
     for s, (theta, m, err) in sorted(mean_and_error(per_shape, "direction").items()):
-        axes[1].errorbar(theta, m, yerr=np.nan_to_num(err), fmt="o-", ms=3, capsize=2,
-                         color=colors[s], label="eta = zeta = %g (%d)" % (s[0], len(per_shape[s]["direction"][1])))
-    axes[1].axhline(1, color="gray", ls=":", lw=1)
-    axes[1].set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
-                       ["0", "pi/4", "pi/2", "3pi/4", "pi"])
-    axes[1].set_xlabel("theta (contact normal vs +z)")
-    axes[1].set_ylabel("mean normal force in the direction / <f>")
-    axes[1].set_title("(b) force by direction", fontsize=9)
-    axes[1].legend(fontsize=7)
+        direction.errorbar(theta, m, yerr=np.nan_to_num(err), fmt="o-", ms=3, capsize=2,
+                           color=colors[s], label="eta = zeta = %g (%d deposits)"
+                           % (s[0], len(per_shape[s]["direction"][1])))
+    direction.axhline(1, color="gray", ls=":", lw=1)
+    direction.set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
+                         ["0", "pi/4", "pi/2", "3pi/4", "pi"])
+    direction.set_xlabel("theta, contact normal against +z (rad)")
+    direction.set_ylabel("mean normal force in the direction / <f>")
+    direction.set_title("(c) force by direction")
+    direction.legend(fontsize=9)
     for s, (f, p, err) in sorted(mean_and_error(per_shape, "magnitude").items()):
         keep = p > 0
-        axes[2].errorbar(f[keep], p[keep], yerr=np.nan_to_num(err[keep]), fmt="o-", ms=3,
-                         color=colors[s], capsize=2, label="eta = zeta = %g" % s[0])
-    axes[2].set_yscale("log")
-    axes[2].set_xlabel("f / <f>")
-    axes[2].set_ylabel("P(f / <f>)")
-    axes[2].set_title("(c) normal-force distribution", fontsize=9)
-    axes[2].legend(fontsize=7)
-    fig.suptitle("contact forces along eta = zeta (a: and the spheroid lines), %s; error bars: "
-                 "pooled seed SD / sqrt(seeds)"
-                 % tag, fontsize=10)
+        magnitude.errorbar(f[keep], p[keep], yerr=np.nan_to_num(err[keep]), fmt="o-", ms=3,
+                           color=colors[s], capsize=2, label="eta = zeta = %g" % s[0])
+    magnitude.set_yscale("log")
+    magnitude.set_xlabel("normal force over its mean, f / <f>")
+    magnitude.set_ylabel("probability density P(f / <f>)")
+    magnitude.set_title("(d) normal-force distribution")
+    magnitude.legend(fontsize=9)
+    fig.suptitle("contact forces, window means at rest, %s; error bars: pooled seed SD / "
+                 "sqrt(seeds)" % tag)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The paper's Fig. 2: the volume distribution V(r) and the size distribution n(r).
+"""The paper's Fig. 3 (fig:vr-nr): the volume distribution V(r) and the size distribution n(r).
 
     ./ellipsoid-dep python tools/plot_sizes.py --from-dump runs/<run>/deposit.dump \
         --out results/study/sizes_N1000_dr0.6.csv      # a deposit's sizes, once

@@ -43,7 +43,8 @@ above a/c = 4; `errors` lists every group's SD and degrees of freedom per quanti
   maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings;
 * `forces`: the force measures a_n, a_f, a_n + a_f and K0 along the diagonal and the spheroid
   lines (a key per line), their trends against a/c and verdicts (tools/study_forces.py), over
-  the deposits that have them;
+  the deposits that have them as window means (window_steps > 0); `force_mirror`: the
+  correlation of K0 with a_f across those deposits, seed by seed;
 * `depth`: delta_r at matched depth beside delta_r at the study's N, and the finite-size
   check (tools/study_depth.py; the deposits at another N or box); null without them;
 * `verdicts`: each claim's comparison with its significance and the seeds per point a
@@ -63,7 +64,7 @@ from deposit_run import read_histo, read_packing  # noqa: E402
 from study_claims_md import markdown  # noqa: E402
 from study_stats import LINES, Pooled, line_maximum, on_line  # noqa: E402
 from study_depth import depth_claims  # noqa: E402
-from study_forces import forces, measured  # noqa: E402
+from study_forces import forces, measured, mirror  # noqa: E402
 from study_verdicts import verdicts  # noqa: E402
 from study_histograms import histogram_difference  # noqa: E402
 
@@ -334,6 +335,7 @@ def claims(results, law, n):
                     "crossings": crossings(sel)}
                    for (dr, name), sel in selections.items() if name != law]
     out["forces"] = forces(base.deposits)
+    out["force_mirror"] = mirror(base.deposits)
     out["depth"] = depth_claims(everything, law, n)
     out["verdicts"] = verdicts(out, selections, law)
     return out

@@ -6,7 +6,8 @@ confounded with depth. The sets matched_depth_* of workflow/config/paper.yaml po
 particles (<V>: the mean particle volume over the mono-sized one) into the box of the study's
 N, so their slabs hold the solid of the delta_r 0 deposits. Here, per delta_r, over the
 shapes poured at matched depth: X(delta_r, matched) - X(0) and, side by side on the same
-shapes, X(delta_r, the study's N) - X(0), with the slabs' thicknesses (shape_effects and
+shapes, X(delta_r, the study's N) - X(0), and their difference X(matched) - X(the study's N)
+(`depth_effect`: what depth does), with the slabs' thicknesses (shape_effects and
 depth of tools/study_verdicts.py; pooled seed SDs per group of shapes). The force measures
 (tools/study_forces.py) the same way over the deposits that have them (`forces`), and their
 trends along the diagonal at that delta_r (`force_trends`) beside delta_r 0's over the same
@@ -56,6 +57,9 @@ def depth_claims(everything, law, n):
                       "delta_r_0": depth(subset(base, shapes))},
             "matched_depth": shape_effects(matched, base, "at delta_r %g, matched depth" % dr),
             "study_N": shape_effects(fixed, base, "at delta_r %g, N %d" % (dr, n), shapes),
+            # what the depth itself does: matched depth against the study's N, shape by shape
+            "depth_effect": shape_effects(matched, fixed, "at matched depth than at N %d" % n,
+                                          shapes),
             "forces": shape_effects(matched.with_forces(), base.with_forces(),
                                     "at delta_r %g, matched depth" % dr, quantities=MEASURES),
             "force_trends": forces(matched.deposits),

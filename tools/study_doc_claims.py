@@ -37,6 +37,14 @@ def z_cell(entry):
                                        z_text(entry["z_equivalent"]))
 
 
+def fit_cell(t):
+    """a slope's significance, with its lack of fit where the points leave the line"""
+    lack = ("; chi^2 %.1f on %d dof about the line (p = %.1g): error scaled by the Birge ratio "
+            "%.2f" % (t["chi2"], t["chi2_dof"], t["chi2_p"], t["birge_ratio"])
+            if t.get("lack_of_fit") else "")
+    return z_cell(t) + lack
+
+
 def shape(s):
     return "(%g, %g)" % tuple(s)
 
@@ -81,19 +89,45 @@ def ridge_rows(v):
         e = r.get("equal_aspect")
         if e:
             cells = mean_cells(e["mean"], 4, "diagonal shapes")
-            cells[0] += "; per shape: " + ", ".join(
-                "%s %s" % (shape(p["diagonal"]), pm(p["difference"], p["se"], 4))
-                for p in e["per_shape"])
             rows.append(["diagonal above the %s line at equal a/c (%g-%g; the line "
                          "interpolated in a/c)" % ((name,) + tuple(e["window_a/c"]))] + cells)
     return rows
 
 
 def mean_cells(m, digits, what):
-    return ["mean over %d %s: %s; positive in %d of %d (sign test p = %.2g); chi^2 %.1f for %d "
-            "(p = %.2g)" % (m["n"], what, pm(m["mean"], m["se"], digits), m["positive"],
-                            m["nonzero"], m["sign_p"], m["chi2"], m["n"], m["chi2_p"]),
-            z_cell(m), m["verdict"]]
+    """a mean over shapes: its numbers, chi^2 and Birge ratio, and the shapes one by one
+    (each with its verdict where the verdict is per shape, or where they are few)"""
+    text = ("mean over %d %s: %s; positive in %d of %d (sign test p = %.2g); chi^2 %.1f for %d "
+            "(p = %.2g); about the mean %.1f for %d dof (p = %.2g), Birge ratio %.2f"
+            % (m["n"], what, pm(m["mean"], m["se"], digits), m["positive"], m["nonzero"],
+               m["sign_p"], m["chi2"], m["n"], m["chi2_p"], m["chi2_about_mean"], m["n"] - 1,
+               m.get("chi2_about_mean_p") or 1.0, m["birge_ratio"]))
+    if m.get("per_shape") and m["per_shape"][0]["shape"] and m["n"] <= 6:
+        text += "; per shape: " + ", ".join(
+            "%s %s (%s)" % (shape(r["shape"]), signed(r["difference"], r["se"], digits),
+                            short_verdict(r["verdict"])) for r in m["per_shape"])
+    return [text, z_cell(m), m["verdict"] + ("" if "mean_verdict" not in m else
+                                             "; the mean: %s" % m["mean_verdict"])]
+
+
+def signed(value, err, digits):
+    return "%+.*f +- %.*f" % (digits, value, digits, err)
+
+
+ACROSS = "depends on shape"
+
+
+def brief(verdict):
+    """a verdict for the summary: without the seeds it would need, and without the chi^2 of
+    a per-shape verdict (both in the appendix)"""
+    if verdict.startswith(ACROSS):
+        return ACROSS + ": " + verdict.split("): ", 1)[1]
+    return short_verdict(verdict)
+
+
+def short_verdict(verdict):
+    """a verdict without the seeds it would need (those are in the appendix table)"""
+    return "undecided" if verdict.startswith("undecided") else verdict
 
 
 def asymmetry_rows(v):
@@ -108,7 +142,9 @@ def asymmetry_rows(v):
     return rows
 
 
-def delta_r_rows(v):
+def delta_r_rows(v, matched_text=None):
+    """matched_text(delta_r): the effect at matched depth where the slab row states the
+    confound"""
     rows = []
     for e in v.get("delta_r", []):
         d, d0 = e["depth"], e["depth_at_0"]
@@ -120,12 +156,14 @@ def delta_r_rows(v):
                             *d0["thickness_range"], d["solid_per_area_mean"],
                             d0["solid_per_area_mean"],
                             100 * (d["solid_per_area_mean"] / d0["solid_per_area_mean"] - 1)),
-                         "-", "at fixed N delta_r is confounded with depth (section 'delta_r at matched depth')"])
+                         "-", "at fixed N delta_r is confounded with depth; %s"
+                         % ((matched_text and matched_text(e["delta_r"])) or
+                            "no deposits at matched depth")])
         for q in ("Qzz", "fabric_anisotropy", "phi", "Z"):
             if q in e:
                 m = e[q]
                 cells = mean_cells(m, 4, "shapes")
-                cells[0] += "; relative to the mean |%s(0)|: %+.1f %%" % (q, 100 * m["relative"])
+                cells[0] += "; relative to the mean abs(%s(0)): %+.1f %%" % (q, 100 * m["relative"])
                 rows.append(["%s(delta_r %g) - %s(0)" % (q, e["delta_r"], q)] + cells)
     return rows
 
@@ -140,9 +178,10 @@ def fall_back_rows(v):
             if key in f:
                 s = f[key]
                 rows.append(["Z falls back along eta = zeta, %s: %s" % (tag, label),
-                             "%s per unit eta (%g to %g, %d points)"
-                             % (pm(s["slope"], s["se"], 3), s["from"], s["to"], s["points"]),
-                             z_cell(s), s["verdict"]])
+                             "%s per unit eta (%g to %g, %d points; chi^2 %.1f on %d dof about "
+                             "the line)" % (pm(s["slope"], s["se"], 3), s["from"], s["to"],
+                                            s["points"], s["chi2"], s["chi2_dof"]),
+                             fit_cell(s), s["verdict"]])
         for key, label in (("end_minus_peak", "Z%s - Z%s (end - highest)"),
                            ("end_minus_highest_spheroid", "Z%s - Z%s (end - highest spheroid)")):
             if key in f:
@@ -223,9 +262,9 @@ def sphere_rows(v):
     return rows
 
 
-def verdicts_block(data):
+def verdicts_block(data, matched_text=None):
     v = data.claims["verdicts"]
-    rows = (maximum_rows(v) + ridge_rows(v) + asymmetry_rows(v) + delta_r_rows(v)
+    rows = (maximum_rows(v) + ridge_rows(v) + asymmetry_rows(v) + delta_r_rows(v, matched_text)
             + fall_back_rows(v) + crossing_rows(v) + sphere_rows(v))
     return table(["question", "measured (+- standard error)", "significance",
                   "verdict (3 sigma; else the seeds per point it needs)"], rows)

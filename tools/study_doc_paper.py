@@ -5,8 +5,9 @@ import math
 
 from scipy import stats
 
-from study_doc_claims import pm, shape, table, z_cell, z_text
-from study_forces import shape_of_trend
+from study_doc_claims import brief, pm, shape, signed, table, z_cell, z_text
+from study_doc_depth import matched_answer
+from study_doc_forces import forces_row
 from study_verdicts import PAPER_WORDS
 from study_stats import SIGMA, equivalent_sigma
 
@@ -105,9 +106,11 @@ def ridge_row(data):
         e = x.get("equal_aspect")
         if e:
             m = e["mean"]
-            cells[-1] += "; at equal a/c (%d diagonal shapes): %s" % (
-                m["n"], dtext(m["mean"], m["se"], 4, m.get("dof")))
-            verdict += "; at equal a/c %s" % m["verdict"]
+            cells[-1] += "; at equal a/c (%d diagonal shapes): %s" % (m["n"], "; ".join(
+                "%s %s" % (shape(r["shape"]), signed(r["difference"], r["se"], 4))
+                for r in m["per_shape"]) if "mean_verdict" in m else
+                dtext(m["mean"], m["se"], 4, m.get("dof")))
+            verdict += "; at equal a/c %s" % brief(m["verdict"])
         verdicts.append(verdict)
     return ["the diagonal maximum above the prolate and oblate maxima", "; ".join(cells),
             "; ".join(verdicts)]
@@ -124,11 +127,10 @@ def symmetry_row(data):
             "rise from spheres to the maximum); chi^2 %.1f for %d pairs (p = %.1g)"
             % (a["n"], pm(a["mean"], a["se"], 4), z_cell(a), rms, 100 * rms / rise,
                a["chi2"], a["n"], a["chi2_p"]),
-            "no tilt detected: |mean| < %.4f at %g sigma; %s"
-            % (abs(a["mean"]) + SIGMA * a["se"], SIGMA,
-               "pair by pair not symmetric within the seed scatter (the pairs scatter %.1f times "
-               "their errors)" % a["birge_ratio"] if a["chi2_p"] < 0.0027 else
-               "symmetric within the seed scatter")]
+            "pair by pair: %s (the pairs scatter %.1f times their errors)"
+            % (brief(a["verdict"]), a["birge_ratio"]) if "mean_verdict" in a else
+            "no tilt detected: abs(mean) < %.4f at %g sigma; symmetric within the seed scatter"
+            % (abs(a["mean"]) + SIGMA * a["se"], SIGMA)]
 
 
 def constant_eta_row(data):
@@ -164,11 +166,15 @@ def delta_r_density_row(data):
                      % (e["delta_r"], pm(m["mean"], m["se"], 4), m["n"], m["positive"],
                         z_cell(m), 100 * share,
                         100 * abs(share) * math.hypot(m["se"] / m["mean"], rise[1] / rise[0])))
+    verdicts = ["delta_r %g: %s" % (e["delta_r"], brief(e["phi"]["verdict"]))
+                for e in data.claims["verdicts"]["delta_r"] if "phi" in e]
+    answers = ["delta_r %g %s" % (e["delta_r"], matched_answer(data, e["delta_r"]))
+               for e in data.claims["verdicts"]["delta_r"] if matched_answer(data, e["delta_r"])]
     return ["delta_r minor for density; polydisperse deposits denser",
             "phi(delta_r) - phi(0), N fixed: " + "; ".join(cells),
-            "denser: yes at each delta_r; 'minor' is the reader's call against the percentages; "
-            "at fixed N delta_r also thins the measuring slab (verdicts above; the section "
-            "'delta_r at matched depth')"]
+            "; ".join(verdicts) + "; 'minor' is the reader's call against the percentages; at "
+            "fixed N delta_r also thins the measuring slab: " + ("; ".join(answers) or
+                                                                  "no deposits at matched depth")]
 
 
 def z_row(data):
@@ -248,47 +254,6 @@ def fabric_row(data):
             "spheres: flat or undecided (see the verdict table)"]
 
 
-LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
-              "oblate": "oblate (eta = 1)"}
-
-
-def force_line_text(line, f):
-    """one line's force-weighted anisotropy a_n + a_f and its own part a_f against a/c"""
-    t = f["trends"]
-    total, own = t["a_total"]["slope_per_unit_a/c"], t["a_f"]["slope_per_unit_a/c"]
-    first, last = f["per_shape"][0], f["per_shape"][-1]
-    seeds = sorted({r["seeds"] for r in f["per_shape"]})
-    return ("%s, %d deposits (%s seeds per shape): force-weighted anisotropy a_n + a_f "
-            "%s at %s, %s at %s, slope %s per unit a/c (%s); the forces' own part a_f: "
-            "slope %s (%s)"
-            % (LINE_NAMES[line], f["deposits"],
-               "-".join("%d" % k for k in (seeds[0], seeds[-1])) if len(seeds) > 1
-               else "%d" % seeds[0],
-               pm(first["a_total"]["mean"], first["a_total"]["se"], 3),
-               shape((first["eta"], first["zeta"])),
-               pm(last["a_total"]["mean"], last["a_total"]["se"], 3),
-               shape((last["eta"], last["zeta"])), pm(total["slope"], total["se"], 4),
-               z_cell(total), pm(own["slope"], own["se"], 4), z_cell(own)))
-
-
-def forces_row(data):
-    claim = ("abstract: the contact forces are increasingly preferred along the vertical as "
-             "the shape deviates from a sphere")
-    lines = data.claims.get("forces") or {}
-    if "diagonal" not in lines:
-        return [claim, "not measured: fewer than 3 diagonal shapes have two deposits with the "
-                "force measures", "undecided"]
-    verdicts = []
-    for line, f in lines.items():
-        t = f["trends"]
-        verdicts.append("%s: increasingly vertical: %s; faster than the contact normals' "
-                        "anisotropy (a_f): %s; K0: %s"
-                        % (LINE_NAMES[line], shape_of_trend(t["a_total"]),
-                           shape_of_trend(t["a_f"]), shape_of_trend(t["K0"])))
-    return [claim, "; ".join(force_line_text(line, f) for line, f in lines.items()),
-            "; ".join(verdicts)]
-
-
 def crossing_row(data, key, claim):
     c = data.claims["verdicts"]["crossings"][key]
     iso, mut = c["isotropic_level"], c["each_other"]
@@ -310,7 +275,7 @@ def histograms_delta_r_row(data):
         for q, name in (("Qzz", "Q_zz"), ("fabric_anisotropy", "a_z")):
             if q in e:
                 m = e[q]
-                cells.append("%s at delta_r %g: %s (%s; %+.0f %% of |%s(0)|; positive in %d "
+                cells.append("%s at delta_r %g: %s (%s; %+.0f %% of abs(%s(0)); positive in %d "
                              "of %d)" % (name, e["delta_r"], pm(m["mean"], m["se"], 4),
                                          z_cell(m), 100 * m["relative"], name,
                                          m["positive"], m["nonzero"]))

@@ -25,7 +25,7 @@ ISOTROPIC = 1.0 / (4.0 * math.pi)
 FILES = {"contact_normals": ("contact_histo", False, "fabric_anisotropy"),    # file, rising,
          "long_axes": ("orient_histo", True, "Qzz")}                         # amplitude
 PAIR_SIGMA = 3.0          # two curves "differ" when their amplitudes are this far apart
-# the shapes of Figs. 6a and 7 (tools/plot_figures.py): the diagonal and the thinnest spheroids
+# the shapes of Figs. 7a and 8 (tools/plot_figures.py): the diagonal and the thinnest spheroids
 FIGURE_SHAPES = ((1.0, 1.0), (1.2, 1.2), (1.6, 1.6), (2.0, 2.0), (3.0, 3.0), (3.0, 1.0),
                  (1.0, 3.0))
 

@@ -23,6 +23,7 @@ from scipy import stats
 MIN_DOF = 4
 THIN = 4.0                 # a/c from which a general shape counts as thin
 SIGMA = 3.0                # a verdict needs this many standard errors
+CHANCE_P = 0.0027          # the two-sided p of SIGMA: a chi^2 beyond it is not chance
 LARGE = 1000               # seeds per point beyond any study: "more than LARGE"
 BOOTSTRAP = 2000
 WINDOWS = (("parabola 3", 3, 2), ("parabola 5", 5, 2), ("parabola 7", 7, 2), ("cubic 7", 7, 3))
@@ -179,11 +180,31 @@ def significance(difference, stat, sys=0.0):
 
 def weighted_slope(x, y, se):
     """least squares of y against x with weights 1/se^2: (slope, its standard error)"""
+    f = line_fit(x, y, se)
+    return f["slope"], f["se_fit"]
+
+
+def line_fit(x, y, se):
+    """the weighted straight line with its lack of fit: slope, se_fit (from the points'
+    errors), chi2 about the line on n - 2 degrees of freedom, its p and the Birge ratio
+    sqrt(chi2 / dof). Where chi2 is beyond chance (p < CHANCE_P) the points scatter about the
+    line more than their errors allow (the trend is not a line): the slope's error `se` is
+    then se_fit times the Birge ratio, with n - 2 degrees of freedom (`dof_lack_of_fit`)"""
     w = 1 / np.asarray(se, float) ** 2
     x, y = np.asarray(x, float), np.asarray(y, float)
     xm = np.sum(w * x) / w.sum()
     sxx = np.sum(w * (x - xm) ** 2)
-    return float(np.sum(w * (x - xm) * y) / sxx), float(1 / math.sqrt(sxx))
+    slope = float(np.sum(w * (x - xm) * y) / sxx)
+    intercept = float(np.sum(w * y) / w.sum() - slope * xm)
+    chi2 = float(np.sum(w * (y - intercept - slope * x) ** 2))
+    dof = len(x) - 2
+    p = float(stats.chi2.sf(chi2, dof)) if dof > 0 else None
+    birge = math.sqrt(chi2 / dof) if dof > 0 else None
+    scaled = p is not None and p < CHANCE_P and birge > 1
+    se_fit = float(1 / math.sqrt(sxx))
+    return {"slope": slope, "se_fit": se_fit, "se": se_fit * birge if scaled else se_fit,
+            "chi2": chi2, "chi2_dof": dof, "chi2_p": p, "birge_ratio": birge,
+            "lack_of_fit": scaled, "dof_lack_of_fit": dof if scaled else None}
 
 
 def seeds_needed(difference, parts, sys=0.0, sigma=SIGMA):

@@ -28,10 +28,15 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from deposit_run import read_histo, read_packing  # noqa: E402
 
 KEYS = ["eta", "zeta", "delta_r", "N", "width", "law"]
-# the force measures (K0 ... a_f) are nan for deposits whose packing.dat predates them
-QUANTITIES = ["phi", "Z", "Z_no_rattlers", "rattler_fraction", "fabric_anisotropy",
-              "nematic_S", "Qzz", "Nslab", "steps", "wall_seconds", "K0",
-              "fabric_anisotropy_force", "a_n", "a_f"]
+# the force measures (K0 ... a_f) are nan for deposits whose packing.dat predates them; the
+# window's length and the window means' standard errors (*_se) for those before the window
+# (window_steps 0: a snapshot of the bed at rest, which still rings); np: the deposit's ranks
+WINDOW = ["sigma_xx", "sigma_yy", "sigma_zz", "K0", "a_n", "a_f"]
+QUANTITIES = (["phi", "Z", "Z_no_rattlers", "rattler_fraction", "fabric_anisotropy",
+               "nematic_S", "Qzz", "Nslab", "steps", "wall_seconds", "np", "K0",
+               "fabric_anisotropy_force", "a_n", "a_f", "sigma_xx", "sigma_yy", "sigma_zz",
+               "window_steps"] + [q + "_se" for q in WINDOW])
+MEANS = [q for q in QUANTITIES if not q.endswith("_se")]    # table.csv's columns
 HISTOGRAMS = {"contact_histo": "contact_mean.dat", "orient_histo": "orient_mean.dat"}
 
 
@@ -53,6 +58,7 @@ def deposit_row(packing_path):
            "at_rest": pk.get("at_rest", 1) == 1}    # older packing.dat: written at rest only
     for q in QUANTITIES:
         row.setdefault(q, pk.get(q, math.nan))
+    row["window_steps"] = int(pk.get("window_steps", 0))
     row["folder"] = folder
     return row
 
@@ -105,7 +111,7 @@ def main(argv=None):
     for point, rows in by_point.items():
         entry = {k: rows[0][k] for k in ["point"] + KEYS}
         entry["seeds"] = len(rows)
-        for q in QUANTITIES:
+        for q in MEANS:
             entry[q + "_mean"], entry[q + "_sem"] = mean_sem([r[q] for r in rows])
         for histo, fname in HISTOGRAMS.items():
             rel = os.path.join("points", point, fname)
@@ -114,7 +120,7 @@ def main(argv=None):
         table.append(entry)
     table.sort(key=lambda e: tuple(e[k] for k in KEYS))
     columns = (["point"] + KEYS + ["seeds"]
-               + [q + s for q in QUANTITIES for s in ("_mean", "_sem")] + list(HISTOGRAMS))
+               + [q + s for q in MEANS for s in ("_mean", "_sem")] + list(HISTOGRAMS))
     write_csv(os.path.join(results, "table.csv"), columns, table)
     print("study_table: %d deposits, %d points -> %s" % (len(deposits), len(table),
                                                            os.path.join(results, "table.csv")))

@@ -20,8 +20,8 @@ import numpy as np
 from scipy import stats
 
 from study_histograms import crossings_both, sphere_isotropy
-from study_stats import (MIN_DOF, SIGMA, THIN, decide, equivalent_sigma, seeds_needed,
-                         sign_test, significance, weighted_slope)
+from study_stats import (CHANCE_P, MIN_DOF, SIGMA, THIN, decide, equivalent_sigma, seeds_needed,
+                         line_fit, sign_test, significance)
 
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
@@ -128,7 +128,8 @@ def equal_aspect(base, name, yes, no):
         at = (1 - w) * phi.mean(s0) + w * phi.mean(s1)
         se = math.hypot((1 - w) * phi.se(s0), w * phi.se(s1))
         var = ((1 - w) * phi.sd(s0)) ** 2 + (w * phi.sd(s1)) ** 2 + phi.sd(s) ** 2
-        rows.append((phi.mean(s) - at, math.hypot(phi.se(s), se), var))
+        rows.append((phi.mean(s) - at, math.hypot(phi.se(s), se), var,
+                     min(phi.dof(s), phi.dof(s0), phi.dof(s1))))
         shapes.append({"diagonal": list(s), "a/c": ac, "between": [list(s0), list(s1)],
                        "difference": rows[-1][0], "se": rows[-1][1]})
     if not rows:
@@ -136,27 +137,30 @@ def equal_aspect(base, name, yes, no):
     counts = sorted({len(base.phi[tuple(r["diagonal"])]) for r in shapes})
     dof = min(base.pooled.dof(tuple(r["diagonal"])) for r in shapes)
     mean = mean_of_differences(rows, "-".join("%d" % c for c in (counts[0], counts[-1]))
-                               if len(counts) > 1 else "%d" % counts[0], dof, yes, no)
+                               if len(counts) > 1 else "%d" % counts[0], dof, yes, no,
+                               [tuple(r["diagonal"]) for r in shapes])
     return {"window_a/c": list(RIDGE_WINDOW), "per_shape": shapes, "mean": mean}
 
 
-def mean_of_differences(rows, seeds, dof, yes, no):
-    """rows [(difference, se, var at one seed)]: the mean over the shapes, its error, its
-    significance (Student's t with dof, the fewest of the pooled SDs'), the sign test, chi^2
-    and the verdict (with the seeds per point a 3-sigma mean needs).
+def mean_of_differences(rows, seeds, dof, yes, no, shapes=None, unit="shapes"):
+    """rows [(difference, se, var at one seed[, dof of se, else dof])]: the mean over the
+    shapes, its error, its significance (Student's t with dof, the fewest of the pooled SDs'),
+    the sign test, chi^2 and the verdict (with the seeds per point a 3-sigma mean needs).
 
     Where the differences scatter about their mean more than their errors allow (chi^2 about
-    the mean above its n - 1 degrees of freedom), the effect differs from shape to shape: the
-    error is then scaled by the Birge ratio sqrt(chi^2 / (n - 1)), taken with n - 1 degrees of
-    freedom, and the scatter between shapes counts as a systematic that more seeds do not
-    shrink"""
+    the mean above its n - 1 degrees of freedom), the mean's error is scaled by the Birge
+    ratio sqrt(chi^2 / (n - 1)) and taken with n - 1 degrees of freedom. Where that scatter is
+    beyond chance (p < CHANCE_P, 3 sigma) the effect depends on the shape and a mean over
+    shapes answers no question: the verdict is then each shape's own (`per_shape`, its
+    difference against its own error; shapes: their (eta, zeta), in the order of rows)"""
     d = np.array([r[0] for r in rows])
-    n = len(rows)
+    n, dof0 = len(rows), dof
     within = math.sqrt(sum(r[1] ** 2 for r in rows)) / n
     var1 = sum(r[2] for r in rows) / n ** 2
     mean = float(d.mean())
     chi2_about_mean = float(sum(((r[0] - mean) / r[1]) ** 2 for r in rows))
     birge = math.sqrt(chi2_about_mean / (n - 1)) if n > 1 else 1.0
+    p_scatter = float(stats.chi2.sf(chi2_about_mean, n - 1)) if n > 1 else None
     se, between = within, 0.0
     if birge > 1:
         se, dof = within * birge, min(dof, n - 1) if dof else n - 1
@@ -165,12 +169,38 @@ def mean_of_differences(rows, seeds, dof, yes, no):
     chi2 = float(sum((r[0] / r[1]) ** 2 for r in rows))
     k, m, p = sign_test(d)
     need = seeds_needed(mean, [(within, var1 / within ** 2)], between)   # within^2 seeds = var1
-    return dict({"n": n, "mean": mean, "se": se, "se_within": within,
-                 "birge_ratio": birge, "positive": k, "nonzero": m,
-                 "sign_p": p, "chi2": chi2, "chi2_p": float(stats.chi2.sf(chi2, n)),
-                 "chi2_about_mean": chi2_about_mean,
-                 "sd_over_shapes": float(d.std(ddof=1)) if n > 1 else None, "seeds": seeds},
-                **decide(z, need, seeds, yes, no, dof))
+    out = dict({"n": n, "mean": mean, "se": se, "se_within": within,
+                "birge_ratio": birge, "positive": k, "nonzero": m,
+                "sign_p": p, "chi2": chi2, "chi2_p": float(stats.chi2.sf(chi2, n)),
+                "chi2_about_mean": chi2_about_mean, "chi2_about_mean_p": p_scatter,
+                "sd_over_shapes": float(d.std(ddof=1)) if n > 1 else None, "seeds": seeds},
+               **decide(z, need, seeds, yes, no, dof))
+    out["per_shape"] = [dict({"shape": list(shapes[i]) if shapes else None,
+                              "difference": r[0], "se": r[1]},
+                             **decide(r[0] / r[1], seeds_needed(r[0], [(math.sqrt(r[2]), 1)]),
+                                      seeds, yes, no, r[3] if len(r) > 3 else dof0))
+                        for i, r in enumerate(rows)]
+    each = {r["verdict"] for r in out["per_shape"]}
+    if p_scatter is not None and p_scatter < CHANCE_P:
+        out["mean_verdict"] = out["verdict"]
+        out["verdict"] = depends_on_shape(out["per_shape"], yes, no, chi2_about_mean, n, unit)
+        out["seeds_needed"] = None
+    elif out["verdict"].startswith("undecided") and len(each) == 1 and each <= {yes, no}:
+        # the mean's error carries the shapes' scatter; each shape alone is decided, one way
+        out["mean_verdict"] = out["verdict"]
+        out["verdict"] = "%s in each of the %d %s" % (each.pop(), n, unit)
+        out["seeds_needed"] = None
+    return out
+
+
+def depends_on_shape(per_shape, yes, no, chi2, n, unit):
+    """the verdict of a mean over shapes that disagree: how many shapes are decided each way"""
+    up = sum(1 for r in per_shape if r["verdict"] == yes)
+    down = sum(1 for r in per_shape if r["verdict"] == no)
+    parts = ["%s in %d" % (yes, up)] * bool(up) + ["%s in %d" % (no, down)] * bool(down)
+    parts += ["undecided in %d" % (n - up - down)] * bool(n - up - down)
+    return ("depends on shape (the shapes scatter beyond chance, chi^2 %.0f on %d dof): %s of "
+            "%d %s" % (chi2, n - 1, ", ".join(parts), n, unit))
 
 
 def asymmetry(base):
@@ -186,13 +216,14 @@ def asymmetry(base):
                     continue
                 rows.append((pooled.mean(a) - pooled.mean(b),
                              math.hypot(pooled.se(a), pooled.se(b)),
-                             pooled.sd(a) ** 2 + pooled.sd(b) ** 2))
+                             pooled.sd(a) ** 2 + pooled.sd(b) ** 2,
+                             min(pooled.dof(a), pooled.dof(b))))
                 pairs.append([e, z])
         if not rows:
             continue
         dof = min(g["dof"] for g in pooled.groups.values())
         m = mean_of_differences(rows, "2-3", dof, "asymmetric: larger for eta > zeta",
-                                "asymmetric: larger for eta < zeta")
+                                "asymmetric: larger for eta < zeta", pairs, "pairs")
         k = int(np.argmax([abs(r[0]) for r in rows]))
         m["largest"] = {"pair": pairs[k], "difference": rows[k][0], "se": rows[k][1]}
         out[q] = m
@@ -222,11 +253,12 @@ def shape_effects(sel, base, label, shapes=None, quantities=QUANTITIES):
         if not common or any(p.se(s) is None or p0.se(s) is None for s in common):
             continue
         rows = [(p.mean(s) - p0.mean(s), math.hypot(p.se(s), p0.se(s)),
-                 p.sd(s) ** 2 + p0.sd(s) ** 2) for s in common]
+                 p.sd(s) ** 2 + p0.sd(s) ** 2, min(p.dof(s), p0.dof(s))) for s in common]
         counts = sorted({len(v[s]) for v in (p.values, p0.values) for s in common})
         seeds = "%d" % counts[0] if len(counts) == 1 else "%d-%d" % (counts[0], counts[-1])
         dof = min(g["dof"] for g in list(p.groups.values()) + list(p0.groups.values()))
-        m = mean_of_differences(rows, seeds, dof, "larger " + label, "smaller " + label)
+        m = mean_of_differences(rows, seeds, dof, "larger " + label, "smaller " + label,
+                                common)
         scale = float(np.mean([abs(p0.mean(s)) for s in common]))
         m["relative"] = m["mean"] / scale if scale else None
         out[q] = m
@@ -245,15 +277,18 @@ def delta_r_effects(selections, law):
 
 
 def slope_entry(z, shapes):
-    """the weighted slope of Z against eta over the shapes, its significance and seeds"""
-    slope, se = weighted_slope([s[0] for s in shapes], [z.mean(s) for s in shapes],
-                               [z.se(s) for s in shapes])
+    """the weighted slope of Z against eta over the shapes (its error scaled by the Birge
+    ratio where the points scatter about the line beyond chance), its significance, seeds"""
+    fit = line_fit([s[0] for s in shapes], [z.mean(s) for s in shapes],
+                   [z.se(s) for s in shapes])
     counts = sorted({len(z.values[s]) for s in shapes})
     seeds = "%d" % counts[0] if len(counts) == 1 else "%d-%d" % (counts[0], counts[-1])
-    need = seeds_needed(slope, [(se, counts[0])])
-    return dict({"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes),
-                 "slope": slope, "se": se},
-                **decide(slope / se, need, seeds, "rises", "falls", min(map(z.dof, shapes))))
+    dof = min(map(z.dof, shapes))
+    if fit["lack_of_fit"]:
+        dof = min(dof, fit["dof_lack_of_fit"])
+    need = None if fit["lack_of_fit"] else seeds_needed(fit["slope"], [(fit["se"], counts[0])])
+    return dict(fit, **{"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes)},
+                **decide(fit["slope"] / fit["se"], need, seeds, "rises", "falls", dof))
 
 
 def fall_back(sel):

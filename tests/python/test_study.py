@@ -200,7 +200,10 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
             "N 500\neta 1.2\nzeta 1.4\ndelta_r 0.3\nseed %d\nsteps 1000\nphi %g\nZ %g\n"
             "Z_no_rattlers %g\nNslab 200\nrattlers %d\nfabric_anisotropy 0.1\nnematic_S 0.2\n"
             "Qzz -0.1\nwall_seconds 10\n" % (seed, phi, z, z, seed)
-            + ("K0 %g\n" % (0.5 + 0.1 * seed) if seed > 1 else ""))    # one without forces
+            + ("K0 %g\n" % (0.5 + 0.1 * seed) if seed > 1 else "")    # one without forces
+            # the third with window means (and their errors) on 2 ranks
+            + ("np 2\nwindow_steps 2400\nsigma_xx 2.1\nsigma_yy 2.2\nsigma_zz 3.5\n"
+               "sigma_zz_se 0.01\nK0_se 0.002\n" if seed == 3 else ""))
         for h in ("contact_histo", "orient_histo"):
             (d / (h + ".dat")).write_text("# t\n1000 2\n1 0.5 %g 0.5\n2 1.5 %g 0.5\n"
                                           % (seed, 2 * seed))
@@ -217,6 +220,12 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
     assert math.isnan(float(row["K0_mean"]))    # a deposit without the force measures
     deposits = list(csv.DictReader(open(res / "deposits.csv")))
     assert [float(d["K0"]) for d in deposits[1:]] == [0.5 + 0.1 * 2, 0.5 + 0.1 * 3]
+    # the window's length (0: a snapshot), the stresses with their window errors, the ranks
+    assert [int(d["window_steps"]) for d in deposits] == [0, 0, 2400]
+    assert [float(d["sigma_zz"]) for d in deposits[2:]] == [3.5]
+    assert float(deposits[2]["sigma_zz_se"]) == 0.01 and float(deposits[2]["K0_se"]) == 0.002
+    assert math.isnan(float(deposits[1]["sigma_zz"])) and float(deposits[2]["np"]) == 2
+    assert "sigma_zz_mean" in row and "K0_se_mean" not in row
     hist = [list(map(float, line.split())) for line in open(res / row["contact_histo"])
             if not line.startswith("#")]
     assert hist[0][:2] == [0.5, 2.0] and abs(hist[0][2] - sem([1, 2, 3])) < 1e-6
@@ -321,6 +330,13 @@ def test_paper_study_definition(tmp_path):
     for k in range(14, 23):    # the ridge: the spheroid lines at 0.1 steps across their maxima
         for shape in ((k / 10, 1.0), (1.0, k / 10)):
             assert len(points[shape + (0.0, "coulomb")]) >= 5
+    # the stresses at equilibrium (window means): the diagonal at seeds 4-6, the spheroid
+    # lines at seeds 1-3
+    for v in (1, 1.4, 2, 3):
+        assert {4, 5, 6} <= points[(v, v, 0.0, "coulomb")]
+    for v in (1.4, 2, 3):
+        for shape in ((v, 1.0), (1.0, v)):
+            assert {1, 2, 3} <= points[shape + (0.0, "coulomb")]
 
 
 def test_slurm_profile_dry_run(tmp_path):

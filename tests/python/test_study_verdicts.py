@@ -187,7 +187,7 @@ def test_delta_r_at_matched_depth_and_finite_size():
                 f = ({"a_n": "nan", "a_f": "nan", "K0": "nan"} if force_shift is None else
                      {"a_n": 0.3 + 0.02 * v * v + force_shift[0] + sign * e,
                       "a_f": 0.1 + 0.01 * v * v + force_shift[1] + sign * e,
-                      "K0": 0.6 + sign * e})
+                      "K0": 0.6 + sign * e, "window_steps": 2400})
                 out.append(dict(d, law="coulomb", delta_r=dr, N=n, width=width, slab=slab, **f))
     add((1.0, 1.4, 2.0, 3.0), 0.0, 3000, "", 0.0, 7.0, (0.0, 0.0))
     add((1.0, 1.4, 2.0, 3.0), 0.6, 3000, "", -0.100, 4.0)
@@ -262,13 +262,18 @@ def test_force_trends_along_the_diagonal():
         ac = v * v
         for s in (1, -1):
             deposits.append({"eta": v, "zeta": v, "a_n": 0.4 + 0.02 * ac + s * e,
-                             "a_f": 0.2 + 0.05 * ac + s * e, "K0": 0.7 + s * e})
+                             "a_f": 0.2 + 0.05 * ac + s * e, "K0": 0.7 + s * e,
+                             "window_steps": 2400})
         deposits.append({"eta": v, "zeta": v, "a_n": "nan", "a_f": "nan", "K0": "nan"})
-    deposits += [{"eta": 2.0, "zeta": 1.0, "a_n": 9.0, "a_f": 9.0, "K0": 9.0}] * 2
+        # a snapshot of a ringing bed (no window): left out whatever its values
+        deposits.append({"eta": v, "zeta": v, "a_n": 5.0, "a_f": 5.0, "K0": 5.0,
+                         "window_steps": 0})
+    deposits += [{"eta": 2.0, "zeta": 1.0, "a_n": 9.0 + s * e, "a_f": 9.0 + s * e,
+                  "K0": 9.0 + s * e, "window_steps": 2400} for s in (1, -1)]
     assert list(study_forces.forces(deposits)) == ["diagonal"]    # (2, 1): one prolate shape
     f = study_forces.forces(deposits)["diagonal"]
-    assert f["deposits"] == 10 and [r["a/c"] for r in f["per_shape"]] == pytest.approx(
-        [1, 1.44, 1.96, 4, 9])
+    assert f["deposits"] == 10 and f["a_n_at_least_1"] == []    # the snapshots left out
+    assert [r["a/c"] for r in f["per_shape"]] == pytest.approx([1, 1.44, 1.96, 4, 9])
     ac = np.array([1, 1.44, 1.96, 4, 9])
     se_slope = e / math.sqrt(np.sum((ac - ac.mean()) ** 2))    # each shape's SE is e
     for q, slope, spread in (("a_n", 0.02, 1), ("a_f", 0.05, 1), ("a_total", 0.07, 2),
@@ -291,10 +296,10 @@ def test_force_trends_along_the_spheroid_lines():
     for v in (1.0, 1.5, 2.0):
         for s in (1, -1):
             deposits.append({"eta": v, "zeta": 1.0, "a_n": 0.1 * v + s * e, "a_f": s * e,
-                             "K0": 1.0 + s * e})
+                             "K0": 1.0 + s * e, "window_steps": 2400})
             if v > 1:
                 deposits.append({"eta": 1.0, "zeta": v, "a_n": -0.3 * v + s * e, "a_f": s * e,
-                                 "K0": 1.0 + s * e})
+                                 "K0": 1.0 + s * e, "window_steps": 2400})
     f = study_forces.forces(deposits)
     assert sorted(f) == ["oblate", "prolate"]
     assert [r["zeta"] for r in f["prolate"]["per_shape"]] == [1, 1, 1]
@@ -317,7 +322,7 @@ def test_force_figure_from_the_deposits_files(tmp_path):
             deposits.append({"eta": v, "zeta": v, "folder": str(folder)})
             if seed == 3:
                 continue    # predates the force measures
-            (folder / "packing.dat").write_text("mean_normal_force 2.0\n")
+            (folder / "packing.dat").write_text("mean_normal_force 2.0\nwindow_steps 2400\n")
             rows = ["%d %.9f 0.1 0.05 %.9f" % (k + 1, t, 2.0 * (1 + v * P2[k]) + 2 * s * e)
                     for k, t in enumerate(THETA)]
             (folder / "contact_force_histo.dat").write_text("# h\n# h\n# h\n1000 18\n"
@@ -364,7 +369,13 @@ def test_mean_over_shapes_that_disagree():
     assert apart["se"] == pytest.approx(apart["sd_over_shapes"] / math.sqrt(3), rel=1e-12)
     assert apart["se_within"] == pytest.approx(e / math.sqrt(3)) and apart["dof"] == 2
     assert apart["mean"] / apart["se_within"] > 6    # decided without the scatter
-    assert apart["verdict"].startswith("undecided at 5 seeds; no number of seeds")
+    assert apart["mean_verdict"].startswith("undecided at 5 seeds; no number of seeds")
+    # their scatter is beyond chance (chi^2 about the mean 74 on 2 dof): the verdict is each
+    # shape's own, the third alone decided
+    assert apart["chi2_about_mean_p"] < 1e-6
+    assert [r["verdict"] for r in apart["per_shape"]][2] == "up"
+    assert apart["verdict"].startswith("depends on shape") and apart["verdict"].endswith(
+        "up in 1, undecided in 2 of 3 shapes")
 
 
 def test_course_of_a_force_measure():
@@ -375,8 +386,8 @@ def test_course_of_a_force_measure():
     def line(values):
         deposits = []
         for v, y in zip((1.0, 1.2, 1.4, 2.0, 3.0), values):
-            deposits += [{"eta": v, "zeta": v, "a_n": 0.1 + s * e, "a_f": y + s * e, "K0": 0.5 + s * e}
-                         for s in (1, -1)]
+            deposits += [{"eta": v, "zeta": v, "a_n": 0.1 + s * e, "a_f": y + s * e,
+                          "K0": 0.5 + s * e, "window_steps": 2400} for s in (1, -1)]
         return study_forces.forces(deposits)["diagonal"]["trends"]["a_f"]
 
     assert study_forces.shape_of_trend(line((0.0, 0.2, 0.3, 0.2, 0.1))).startswith(
@@ -391,3 +402,85 @@ def test_course_of_a_force_measure():
                                     "verdict": "undecided at 3 seeds; needs 42"}}) == (
         "slope: grows with a/c, but the thinnest against the roundest: +0.098 +- 0.111, "
         "undecided at 3 seeds; needs 42")
+
+
+def test_verdict_per_shape_where_the_shapes_disagree_beyond_chance():
+    """study_verdicts.mean_of_differences: shapes that agree keep the mean's verdict; shapes
+    that scatter beyond chance (chi^2 p < 0.0027) get each its own verdict, counted; shapes
+    within chance whose mean is undecided (its error widened by the Birge ratio, 2 dof) while
+    each is decided the same way say so"""
+    e = 0.001
+    agree = study_verdicts.mean_of_differences([(0.010, e, 2 * e * e)] * 3, "5", 50, "up",
+                                               "down", [(1.0, 1.0), (1.4, 1.4), (2.0, 2.0)])
+    assert agree["verdict"] == "up" and "mean_verdict" not in agree
+    assert [r["shape"] for r in agree["per_shape"]] == [[1.0, 1.0], [1.4, 1.4], [2.0, 2.0]]
+    apart = study_verdicts.mean_of_differences(
+        [(0.010, e, 2 * e * e), (0.020, e, 2 * e * e), (-0.005, e, 2 * e * e)], "5", 50, "up",
+        "down")
+    assert apart["verdict"].startswith("depends on shape")
+    assert apart["verdict"].endswith("up in 2, down in 1 of 3 shapes")
+    assert apart["seeds_needed"] is None and apart["mean_verdict"] != apart["verdict"]
+    # chi^2 about the mean 8 on 2 dof: p = 0.018, within chance; the mean 0.010 +- 2 x
+    # 0.001 / sqrt 3 with 2 dof is 2.5 sigma, each shape alone 8-12 sigma with 50 dof
+    close = study_verdicts.mean_of_differences(
+        [(0.008, e, 2 * e * e), (0.010, e, 2 * e * e), (0.012, e, 2 * e * e)], "5", 50, "up",
+        "down")
+    assert close["chi2_about_mean"] == pytest.approx(8.0)
+    assert close["chi2_about_mean_p"] == pytest.approx(math.exp(-4.0), rel=1e-9)
+    assert close["mean_verdict"].startswith("undecided")
+    assert close["verdict"] == "up in each of the 3 shapes"
+    # a shape's own degrees of freedom (the fourth entry) decide its t
+    few = study_verdicts.mean_of_differences(
+        [(0.010, e, 2 * e * e, 2), (0.020, e, 2 * e * e, 50), (-0.005, e, 2 * e * e, 50)],
+        "5", 50, "up", "down")
+    assert few["per_shape"][0]["dof"] == 2 and few["per_shape"][1]["dof"] == 50
+
+
+def test_slope_counts_its_lack_of_fit():
+    """study_stats.line_fit: points on a line keep the slope's error from their own; points
+    that leave the line beyond chance widen it by the Birge ratio with n - 2 dof, and the
+    force trend's verdict follows (no number of seeds decides a slope the points do not
+    follow)"""
+    x = np.array([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])
+    line = study_stats.line_fit(x, 0.5 + 0.01 * x, [0.01] * 6)
+    assert line["slope"] == pytest.approx(0.01) and not line["lack_of_fit"]
+    assert line["se"] == line["se_fit"] == pytest.approx(0.01 / math.sqrt(17.5))
+    zigzag = 0.5 + 0.01 * x + 0.05 * np.array([1, -1, 1, -1, 1, -1])
+    bad = study_stats.line_fit(x, zigzag, [0.01] * 6)
+    assert bad["lack_of_fit"] and bad["chi2_dof"] == 4 and bad["chi2_p"] < 0.0027
+    assert bad["se"] == pytest.approx(bad["se_fit"] * math.sqrt(bad["chi2"] / 4))
+    e, deposits = 0.01, []
+    for v, k0 in zip((1.0, 1.2, 1.4, 2.0, 3.0), (0.50, 0.75, 0.52, 0.80, 0.70)):
+        deposits += [{"eta": v, "zeta": v, "a_n": 0.1 + s * e, "a_f": 0.1 + s * e,
+                      "K0": k0 + s * e, "window_steps": 2400} for s in (1, -1)]
+    t = study_forces.forces(deposits)["diagonal"]["trends"]["K0"]["slope_per_unit_a/c"]
+    assert t["lack_of_fit"] and t["dof"] == 3 and t["seeds_needed"] is None
+    assert abs(t["slope"] / t["se_fit"]) > 3 > abs(t["z_equivalent"])
+    assert t["verdict"].startswith("undecided") and "no number of seeds" in t["verdict"]
+
+
+def test_force_measures_from_window_means_with_one_error_per_shape():
+    """study_forces: deposits without window means (window_steps 0 or absent: snapshots of a
+    ringing bed) are left out; the seed SD is pooled over the selection, so the sphere on the
+    prolate and on the oblate line has one error; K0 mirrors a_f seed by seed (r < 0)"""
+    deposits = []
+    for v, spread in ((1.0, 0.01), (1.4, 0.01), (2.0, 0.01), (3.0, 0.03)):
+        for shape in {(v, 1.0), (1.0, v)}:
+            for s in (1, -1, 0):
+                deposits.append({"eta": shape[0], "zeta": shape[1], "a_n": 0.1 * v,
+                                 "a_f": 0.2 + s * spread, "K0": 0.6 - s * spread + 0.001 * s * s,
+                                 "window_steps": 2400})
+            deposits.append({"eta": shape[0], "zeta": shape[1], "a_n": 3.0, "a_f": 3.0,
+                             "K0": 3.0, "window_steps": 0})
+            deposits.append({"eta": shape[0], "zeta": shape[1], "a_n": 3.0, "a_f": 3.0,
+                             "K0": 3.0})
+    f = study_forces.forces(deposits)
+    for line in ("prolate", "oblate"):
+        rows = f[line]["per_shape"]
+        assert [r["seeds"] for r in rows] == [3, 3, 3, 3]
+        assert [r["K0"]["mean"] for r in rows] == pytest.approx([0.6 + 0.002 / 3] * 4)
+    sphere = [f[line]["per_shape"][0]["K0"]["se"] for line in ("prolate", "oblate")]
+    assert sphere[0] == sphere[1]
+    m = study_forces.mirror(deposits)
+    assert m["deposits"] == 21 and m["shapes"] == 7 and m["r"] < -0.99 and m["p"] < 1e-6
+    assert study_forces.mirror(deposits[:5]) is None
