@@ -90,6 +90,12 @@ bool built_from(const EllipsoidState &s, const ShapeKey &key, const double *valu
 
 void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
 {
+  update_shape(i, s, key);
+  add_omega(i, s);
+}
+
+void EllipsoidAtoms::update_shape(int i, EllipsoidState &s, ShapeKey &key) const
+{
   double values[7];
   std::memcpy(values, quat(i), 4 * sizeof(double));
   std::memcpy(values + 4, shape(i), 3 * sizeof(double));
@@ -104,7 +110,7 @@ void EllipsoidAtoms::update_state(int i, EllipsoidState &s, ShapeKey &key) const
     std::memcpy(key.values, values, sizeof(values));
     key.valid = EllipsoidDep::finite3(center);
   }
-  add_motion(i, s);
+  add_translation(i, s);
 }
 
 bool EllipsoidAtoms::copy_state(int i, int k, const EllipsoidState &sk, const ShapeKey &kk,
@@ -132,8 +138,13 @@ bool EllipsoidAtoms::copy_state(int i, int k, const EllipsoidState &sk, const Sh
 
 void EllipsoidAtoms::add_motion(int i, EllipsoidState &s) const
 {
+  add_translation(i, s);
+  add_omega(i, s);
+}
+
+void EllipsoidAtoms::add_translation(int i, EllipsoidState &s) const
+{
   s.velocity = Vec3(atom->v[i][0], atom->v[i][1], atom->v[i][2]);
-  s.omega = omega(i, s.shape.rotation);
   s.mass = atom->rmass[i];
 }
 

@@ -76,13 +76,20 @@ class EllipsoidAtoms {
   // state(i) into s, rebuilding the shape matrices only when key (that of the last build of
   // s) differs from atom i's quaternion and semi-axes: atoms that do not rotate skip them
   void update_state(int i, EllipsoidState &s, ShapeKey &key) const;
+  // update_state without the angular velocity (s.omega left stale), for a caller that needs it
+  // only at contacts: add_omega(i, s) then gives it, bit for bit update_state's
+  void update_shape(int i, EllipsoidState &s, ShapeKey &key) const;
+  void add_omega(int i, EllipsoidState &s) const { s.omega = omega(i, s.shape.rotation); }
   // state(i) into s as a copy of atom k's state sk (key kk) moved to i's centre, when i and k
   // carry the same values bit for bit (bonus, velocity, angular momentum, mass, inertia), as a
-  // periodic image does: identical to update_state(i, s, key) then. false (s untouched) if not
+  // periodic image does: identical to update_state(i, s, key) then (s.omega is sk's, stale
+  // when sk's is). false (s untouched) if not
   bool copy_state(int i, int k, const EllipsoidState &sk, const ShapeKey &kk, EllipsoidState &s,
                   ShapeKey &key) const;
   // velocity, angular velocity and mass of state, whose shape must be atom i's
   void add_motion(int i, EllipsoidState &state) const;
+  // add_motion without the angular velocity
+  void add_translation(int i, EllipsoidState &state) const;
 
   Atom *atom;
   AtomVecEllipsoid *avec;

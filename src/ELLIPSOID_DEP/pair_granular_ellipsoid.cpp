@@ -369,7 +369,7 @@ double PairGranularEllipsoid::init_one(int i, int j)
 double PairGranularEllipsoid::memory_usage()
 {
   return static_cast<double>(states.capacity() * sizeof(EllipsoidState) +
-                             state_keys.capacity() * sizeof(ShapeKey) +
+                             state_keys.capacity() * sizeof(ShapeKey) + omega_known.capacity() +
                              ghost_owner.capacity() * sizeof(int) +
                              candidates.memory_usage() + contact_rows.memory_usage()) +
       contacts.memory_usage();

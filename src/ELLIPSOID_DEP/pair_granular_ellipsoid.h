@@ -80,12 +80,22 @@ class PairGranularEllipsoid : public Pair {
   // candidate pairs (Candidates::state_needed(); the others' states are stale)
   std::vector<EllipsoidState> states;
   std::vector<ShapeKey> state_keys;    // what states[i].shape was last built from
+  // whether states[i].omega is this evaluation's: it is computed at the atom's first contact
+  // (most candidates of a dilute scene never touch)
+  std::vector<char> omega_known;
   // per ghost atom (index - nlocal): the owned atom of the same ID (a periodic image on this
   // rank) or -1, found when the ghosts change (neighbour list builds)
   std::vector<int> ghost_owner;
   std::unordered_map<tagint, int> owned_index;    // scratch of find_ghost_owners()
   void find_ghost_owners();
   void update_states();
+  // states[i].omega, once per evaluation (inline: a bed at rest asks at every contact)
+  void complete_state(const EllipsoidAtoms &atoms, int i)
+  {
+    if (omega_known[i]) return;
+    atoms.add_omega(i, states[i]);
+    omega_known[i] = 1;
+  }
 
   // the neighbour pairs each force evaluation visits (granular_candidates.h)
   Candidates candidates;

@@ -33,19 +33,21 @@ void PairGranularEllipsoid::find_ghost_owners()
   }
 }
 
-// the states of the atoms in candidate pairs (state_needed): only their pairs are evaluated
+// the states of the atoms in candidate pairs (state_needed): only their pairs are evaluated;
+// without the angular velocity, which complete_state adds at an atom's first contact
 void PairGranularEllipsoid::update_states()
 {
   const EllipsoidAtoms atoms(atom);
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   states.resize(nall);
   state_keys.resize(nall);
+  omega_known.assign(nall, 0);
   // the candidates' atoms (every atom when the candidates do not cover them all)
   const std::vector<char> &state_needed = candidates.state_needed();
   const std::vector<char> every(static_cast<int>(state_needed.size()) != nall ? nall : 0, 1);
   const char *const needed = every.empty() ? state_needed.data() : every.data();
   for (int i = 0; i < nlocal; i++)
-    if (needed[i]) atoms.update_state(i, states[i], state_keys[i]);
+    if (needed[i]) atoms.update_shape(i, states[i], state_keys[i]);
   // a ghost that is an image of an owned atom copies its state (checked value by value)
   if (neighbor->ago == 0 || static_cast<int>(ghost_owner.size()) != atom->nghost)
     find_ghost_owners();
@@ -54,7 +56,7 @@ void PairGranularEllipsoid::update_states()
     const int k = ghost_owner[i - nlocal];
     if (k < 0 || !needed[k] ||
         !atoms.copy_state(i, k, states[k], state_keys[k], states[i], state_keys[i]))
-      atoms.update_state(i, states[i], state_keys[i]);
+      atoms.update_shape(i, states[i], state_keys[i]);
   }
 }
 
@@ -107,6 +109,7 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
                                           respa_run, counters);
   if (!contact_rows.live()) contact_rows.load(lmp, list, candidates, fix_history, size_history);
   update_states();
+  const EllipsoidAtoms atoms(atom);
   const bool record = contacts.recording();
   if (record) contacts.start(update->ntimestep);
 
@@ -153,6 +156,8 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
         continue;
       }
 
+      complete_state(atoms, i);
+      complete_state(atoms, j);
       const ContactForce result = pair_force(i, j, law_index[type[i]][type[j]], history, geometry);
       const double *fi = result.force_i.data();
       f[i][0] += fi[0];
