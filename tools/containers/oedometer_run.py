@@ -25,7 +25,9 @@ import shlex
 import subprocess
 import sys
 
-import deposit_run
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
+import deposit_run  # noqa: E402
 
 INPUT = os.path.join(deposit_run.ROOT, "examples", "oedometer", "in.oedometer")
 LOADS = [0.5, 1, 2, 4, 2, 1, 0.5]

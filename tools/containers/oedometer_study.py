@@ -22,7 +22,9 @@ import math
 import os
 import sys
 
-import oedometer_run
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
+import oedometer_run  # noqa: E402
 
 ROOT = oedometer_run.deposit_run.ROOT
 RESULTS = os.path.join(ROOT, "results", "oedometer")

@@ -40,7 +40,7 @@ from deposit_checkpoint import CHECKPOINTS, checkpoint_step, newest_checkpoint  
 from deposit_depth import too_shallow
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
-                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..")))
+                      os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 DEFAULT_INPUT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 
 PROGRESS = re.compile(r"^PROGRESS step (\d+) inserted (\S+) of (\d+) KE/particle (\S+) target (\S+)")

@@ -31,9 +31,9 @@ import statistics
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 OUT = os.path.join(ROOT, "results", "protocol_trade")    # the CSV and the plot
-RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
+RUNNER = os.path.join(ROOT, "tools", "deposit", "deposit_run.py")
 
 # The reference: stiff (overlaps at rest ~0.6x today's), slow (dt ~1/50 of the shortest
 # contact time), strict rest criterion; the pour as today.

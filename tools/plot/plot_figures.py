@@ -43,7 +43,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
 from plot_forces import figure as forces_figure  # noqa: E402
 from plot_maps import groups_text, map_figure  # noqa: E402
 from plot_sizes import figure as sizes_figure  # noqa: E402

@@ -25,7 +25,8 @@ import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
 import pore_flow_domain  # noqa: E402
 import pore_surface  # noqa: E402
 import pores  # noqa: E402

@@ -43,7 +43,8 @@ import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
 from deposit_run import read_packing  # noqa: E402
 # Particles and rotation_matrices: pores' names for its callers too
 from pore_input import Particles, read_dump, read_slab, rotation_matrices  # noqa: E402,F401

@@ -59,7 +59,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
 from deposit_run import read_histo, read_packing  # noqa: E402
 from study_claims_md import markdown  # noqa: E402
 from study_stats import LINES, Pooled, line_maximum, on_line  # noqa: E402

@@ -24,7 +24,8 @@ from collections import defaultdict
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
 from deposit_run import read_histo, read_packing  # noqa: E402
 
 KEYS = ["eta", "zeta", "delta_r", "N", "width", "law"]
