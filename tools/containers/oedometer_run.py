@@ -2,10 +2,10 @@
 """One oedometer test (examples/oedometer): make a deposit, load it by a servo piston in steps
 of vertical stress and unload it; write the table and the stress-strain figure.
 
-    ./ellipsoid-dep python tools/oedometer_run.py [--N 1000] [--eta 1 --zeta 1 --dr 0]
+    ./ellipsoid-dep python tools/containers/oedometer_run.py [--N 1000] [--eta 1 --zeta 1 --dr 0]
         [--seed S] [--np 2] [--out DIR] [--loads 0.5 1 2 4 2 1 0.5] [--var NAME VALUE ...]
 
-1. The deposit: tools/deposit_run.py with in.deposit's protocol and `-var save 1` (it then
+1. The deposit: tools/deposit/deposit_run.py with in.deposit's protocol and `-var save 1` (it then
    writes deposit.restart at rest) into DIR/deposit; a deposit already there is reused if its
    settings.json has the asked N, eta, zeta, dr and seed (and the hertz law), else refused.
 2. The loading: examples/oedometer/in.oedometer reads it and loads it by the piston; each step
@@ -65,7 +65,7 @@ def parse_args(argv):
 def deposit_mismatch(args, settings):
     """None, or how the deposit's stored settings differ from this run's request"""
     if settings is None:
-        return "it has no settings.json: not a deposit of tools/deposit_run.py"
+        return "it has no settings.json: not a deposit of tools/deposit/deposit_run.py"
     asked = {"N": args.N, "eta": args.eta, "zeta": args.zeta, "dr": args.dr, "seed": args.seed,
              "normal": "hertz"}
     stored = dict(settings, normal=deposit_run.normal_words(settings)[0])

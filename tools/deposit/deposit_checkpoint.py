@@ -1,4 +1,4 @@
-"""The checkpoints of tools/deposit_run.py: LAMMPS restart files written alternately to
+"""The checkpoints of tools/deposit/deposit_run.py: LAMMPS restart files written alternately to
 checkpoint.a and checkpoint.b in the run folder; the newer complete one is resumed from."""
 import os
 import struct

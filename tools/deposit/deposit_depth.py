@@ -1,4 +1,4 @@
-"""Is a deposit deep enough for its measuring slab? tools/deposit_run.py asks before it runs
+"""Is a deposit deep enough for its measuring slab? tools/deposit/deposit_run.py asks before it runs
 in.deposit (which checks the slab it measured after the run: slab_ok in packing.dat), so that a
 deposit too shallow is refused with the smallest N for its shape, not measured as phi 0."""
 import math

@@ -1,4 +1,4 @@
-"""The default deposit's report (tools/deposit_run.py): the summary it prints and its plots,
+"""The default deposit's report (tools/deposit/deposit_run.py): the summary it prints and its plots,
 PNGs with matplotlib (Agg) from the run's data, which deposit_run reads from its files
 (read_histo, read_packing).
 

@@ -12,7 +12,7 @@ particle against the rest criterion, wall time and an estimate of the time left 
 decay rate of the kinetic energy), then plots the histograms to PNG (matplotlib, Agg), prints
 the volume fraction and coordination number and lists the files written. A deposit too
 shallow for its measuring slab is refused before it runs, with the smallest N for the shape
-(tools/deposit_depth.py), and fails if its measured slab is thinner than slabmin (packing.dat
+(deposit_depth.py), and fails if its measured slab is thinner than slabmin (packing.dat
 says slab_ok 0); --var slabmin 0 asks for no check (an empty slab still says slab_ok 0).
 
 Checkpoints: every --checkpoint-every steps LAMMPS writes a restart file, alternately

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A colour bar for the deposit's picture (in.deposit's dump image, Fig. 4 of the paper).
 
-    ./ellipsoid-dep python tools/picture_colorbar.py deposit.png [--out with_bar.png]
+    ./ellipsoid-dep python tools/deposit/picture_colorbar.py deposit.png [--out with_bar.png]
 
 in.deposit colours each particle by the tilt of its long axis from the vertical (compute
 orient/histo's per-atom angle, 0 to pi/2) with dump_modify's continuous map

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """The deposit protocol's speed against the accuracy of its results (phi and Z).
 
-    ./ellipsoid-dep python tools/protocol_trade.py [--N 400] [--seeds 101 202 303] [--jobs 2]
-                                                   [--only NAME ...] [--by-config] [--table-only]
+    ./ellipsoid-dep python tools/deposit/protocol_trade.py [--N 400] [--seeds 101 202 303]
+                               [--jobs 2] [--only NAME ...] [--by-config] [--table-only]
 
-Runs the default deposit (examples/deposit/in.deposit through tools/deposit_run.py, one rank,
+Runs the default deposit (examples/deposit/in.deposit through deposit_run.py, one rank,
 `nice -n 10`) for a stiff, slow reference and for variants that change ONE knob of it (normal
 stiffness kn, damping K, time step, drop height zpour, insertion volume fraction fins), each
 for every seed, and today's and the new defaults. A run whose log already reached its rest

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Measure finished deposits again with today's measurement of examples/deposit/in.deposit.
 
-    ./ellipsoid-dep python tools/remeasure_deposit.py RUN_DIR [RUN_DIR ...] [--into DIR ...]
+    ./ellipsoid-dep python tools/deposit/remeasure_deposit.py RUN_DIR [RUN_DIR ...] [--into DIR ...]
 
-A run folder of the runner (tools/deposit_run.py) holds the deposit at rest (deposit.dump)
+A run folder of the runner (tools/deposit/deposit_run.py) holds the deposit at rest (deposit.dump)
 and what was measured on it (packing.dat, contact_histo.dat, orient_histo.dat). This reads
 the dump back as a LAMMPS data file and runs in.deposit in its `measure` mode: no pour, the
 same slab and histogram computes and the same result files as a deposit that ends now. So a

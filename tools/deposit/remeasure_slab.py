@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """phi and Z of finished deposits in common slabs, for comparing protocols.
 
-    ./ellipsoid-dep python tools/remeasure_slab.py RUN_DIR [RUN_DIR ...]
+    ./ellipsoid-dep python tools/deposit/remeasure_slab.py RUN_DIR [RUN_DIR ...]
 
 Reads each run folder's deposit.dump (the runner's OVITO dump), writes it as a LAMMPS data
 file and evaluates compute packing/ellipsoid at run 0 in the fixed bulk slab z in [1, 4] d and

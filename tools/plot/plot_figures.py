@@ -1,18 +1,19 @@
 #!/usr/bin/env python3
-"""Draw the paper's figures from a study's results folder (tools/study_table.py, study_claims.py).
+"""Draw the paper's figures from a study's results folder (tools/study/study_table.py,
+study_claims.py).
 
-    ./ellipsoid-dep python tools/plot_figures.py results/study/table.csv [--out DIR]
+    ./ellipsoid-dep python tools/plot/plot_figures.py results/study/table.csv [--out DIR]
                                                  [--law NAME] [--N N]
 
 Reads table.csv, the deposits of deposits.csv (their histograms and packing.dat), claims.json
-(fitted maxima, crossing angles; optional) and a sizes file (sizes_*.csv, tools/plot_sizes.py;
+(fitted maxima, crossing angles; optional) and a sizes file (sizes_*.csv, plot_sizes.py;
 optional) in the table's folder. The figures use one law and one N (default: those with the
 most points), except fig_density_laws.png, which compares the laws at that N. Every error bar
 and error map is a standard error from the seed SD pooled per group of shapes
-(tools/study_stats.py: spheroids, general shapes below and above a/c = 4, per delta_r and law)
-/ sqrt(the point's seeds); per bin for the histograms. Writes into DIR (default: the table's
-folder) PNG files (the paper's figures numbered as in its LaTeX source, whose Fig. 2 is the
-contact algorithm's flow chart):
+(tools/study/study_stats.py: spheroids, general shapes below and above a/c = 4, per delta_r
+and law) / sqrt(the point's seeds); per bin for the histograms. Writes into DIR (default: the
+table's folder) PNG files (the paper's figures numbered as in its LaTeX source, whose Fig. 2 is
+the contact algorithm's flow chart):
   fig_sizes.png           V(r) and n(r) for several alpha, beta, a deposit's sizes     (Fig. 3)
   fig_density_map.png     phi over (eta, zeta), lowest delta_r, and its error map      (Fig. 5a)
   fig_density_lines.png   phi along eta = zeta, prolate and oblate; the same near the
@@ -25,7 +26,7 @@ contact algorithm's flow chart):
   fig_orient_shapes.png   P(Omega(theta)) of the long axis a for several shapes        (Fig. 8)
   fig_density_laws.png    phi along eta = zeta at the lowest delta_r, one curve per law
   fig_forces.png          the contact forces along eta = zeta: anisotropies and K0 against
-                          a/c, force by direction, P(f/<f>) (tools/plot_forces.py)
+                          a/c, force by direction, P(f/<f>) (plot_forces.py)
 A figure whose data are missing is skipped with a note.
 """
 import argparse

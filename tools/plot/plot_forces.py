@@ -1,7 +1,7 @@
-"""fig_forces.png of the study (tools/plot_figures.py): the contact forces along eta = zeta.
+"""fig_forces.png of the study (tools/plot/plot_figures.py): the contact forces along eta = zeta.
 
 (a) a_n, a_f and a_n + a_f against a/c with their pooled standard errors (claims.json
-`forces`, tools/study_forces.py), and a_n + a_f along the spheroid lines where they have the
+`forces`, tools/study/study_forces.py), and a_n + a_f along the spheroid lines where they have the
 force measures; (b) K0 against a/c on each line; (c) the mean normal force in each direction
 over the mean force, fbar(theta) / <f> (compute contact/histo weight force, column 4 over the
 mean force); (d) P(f / <f>) of the normal forces (compute force/histo), on a log scale. (c) and

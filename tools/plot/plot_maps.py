@@ -1,4 +1,4 @@
-"""The maps over (eta, zeta) of tools/plot_figures.py (the paper's Figs. 5a and 6).
+"""The maps over (eta, zeta) of tools/plot/plot_figures.py (the paper's Figs. 5a and 6).
 
 Left: the measured means interpolated (cubic, scipy griddata; nearest at the hull's edge) on
 a fine grid, with contours, every measured point marked and the 8 x 8 grid's values written

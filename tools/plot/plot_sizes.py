@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """The paper's Fig. 3 (fig:vr-nr): the volume distribution V(r) and the size distribution n(r).
 
-    ./ellipsoid-dep python tools/plot_sizes.py --from-dump runs/<run>/deposit.dump \
+    ./ellipsoid-dep python tools/plot/plot_sizes.py --from-dump runs/<run>/deposit.dump \
         --out results/study/sizes_N1000_dr0.6.csv      # a deposit's sizes, once
-    ./ellipsoid-dep python tools/plot_sizes.py results/study/sizes_N1000_dr0.6.csv \
+    ./ellipsoid-dep python tools/plot/plot_sizes.py results/study/sizes_N1000_dr0.6.csv \
         --png results/study/figures/fig_sizes.png
 
 V(r) = C (r - rmin)^(alpha-1) / (rmax - r)^(1-beta) on [rmin, rmax] is the total volume of the

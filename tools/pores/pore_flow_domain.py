@@ -1,5 +1,5 @@
-"""The permeability of a deposit from flow solves (tools/pore_flow.py) at several voxel sizes,
-extrapolated to a vanishing voxel (tools/pore_flow_fit.py); doc/howto_pores.md.
+"""The permeability of a deposit from flow solves (tools/pores/pore_flow.py) at several voxel sizes,
+extrapolated to a vanishing voxel (tools/pores/pore_flow_fit.py); doc/howto_pores.md.
 
     flow_permeability(particles, box, zlo, zhi) -> {"xx", "yy", "zz" (k0 in d^2), errors,
                                                     "resolutions": [...], "domain", ...}

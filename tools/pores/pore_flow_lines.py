@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Permeability of deposits along the study's lines from the flow solve (doc/howto_pores.md).
 
-    ./ellipsoid-dep python tools/pore_flow_lines.py --out results/flow RUN_DIR [RUN_DIR ...]
+    ./ellipsoid-dep python tools/pores/pore_flow_lines.py --out results/flow RUN_DIR [RUN_DIR ...]
         [--flow-voxels-per-d N1,N2,N3] [--flow-box L] [--directions xx,zz]
 
 For each run folder (deposit.dump + packing.dat, read only) the flow solve of

@@ -1,4 +1,4 @@
-"""The deposit's particles for tools/pores.py: centres, rotations and semi-axes, read from the
+"""The deposit's particles for tools/pores/pores.py: centres, rotations and semi-axes, read from the
 runner's dump (deposit.dump: id type x y z quatw quati quatj quatk semi_a_x semi_a_y semi_a_z)
 with the slab of its packing.dat; bad input is a ValueError that says what is wrong."""
 import math

@@ -1,4 +1,4 @@
-"""The picture of tools/pores.py (pores.png): sections of the pore space coloured by local
+"""The picture of tools/pores/pores.py (pores.png): sections of the pore space coloured by local
 thickness, the pore size distribution and the porosity profile, voxel layers against the exact
 closed form."""
 import numpy as np

@@ -1,4 +1,4 @@
-"""Exact volumes and areas of ellipsoids cut by a slab (tools/pores.py): the solid fraction
+"""Exact volumes and areas of ellipsoids cut by a slab (tools/pores/pores.py): the solid fraction
 of each particle inside the slab (closed form), the area of an ellipsoid (Carlson's R_G) and
 of the zone a slab cuts from it (a converged quadrature)."""
 import math

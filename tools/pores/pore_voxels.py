@@ -1,4 +1,4 @@
-"""The voxel view of a deposit's slab (tools/pores.py): the voxel grid, the image of the
+"""The voxel view of a deposit's slab (tools/pores/pores.py): the voxel grid, the image of the
 particles, the pore sizes from local thickness, the connectivity from bottom to top, the
 geometric tortuosity, and the analysis of one voxel size (analyse_voxels)."""
 import math

@@ -3,7 +3,7 @@
 
     ./ellipsoid-dep pores RUN_DIR [--voxel H] [--flow [--flow-voxel H] [--flow-box L]
                                                      [--flow-box-at X,Y]] [--quiet]
-    ./ellipsoid-dep python tools/pores.py --compare OUT.png RUN_DIR [RUN_DIR ...]
+    ./ellipsoid-dep python tools/pores/pores.py --compare OUT.png RUN_DIR [RUN_DIR ...]
 
 Reads RUN_DIR/deposit.dump (the runner's OVITO dump: id type x y z quatw quati quatj quatk
 semi_a_x semi_a_y semi_a_z ...) and RUN_DIR/packing.dat (the slab zlo, zhi and phi of compute
@@ -19,15 +19,15 @@ image (periodic in x and y): pore size distribution (local thickness from the Eu
 distance transform), connectivity from the bottom to the top of the slab, and the voxel
 porosity; these are computed at the voxel size H and at 2 H to show their convergence.
 Kozeny-Carman permeability k = porosity^3 / (5 S_v^2) from the exact values. With --flow:
-k_xx, k_yy, k_zz from Stokes-flow solves with OpenFOAM (tools/pore_flow.py) on a box of side
+k_xx, k_yy, k_zz from Stokes-flow solves with OpenFOAM (pore_flow.py) on a box of side
 5 d cut out of the slab at three voxel sizes, extrapolated to a vanishing voxel
-(tools/pore_flow_domain.py, tools/pore_flow_fit.py); --flow-voxel H: at H alone.
+(pore_flow_domain.py, pore_flow_fit.py); --flow-voxel H: at H alone.
 
-The parts: reading the particles and the slab in tools/pore_input.py, exact volumes and areas
-in tools/pore_surface.py, the voxel view (pore sizes, connectivity, tortuosity) in
-tools/pore_voxels.py, the largest inscribed ball in tools/pore_inscribed.py, the flow solve in
-tools/pore_flow.py (one image), tools/pore_flow_domain.py (the domain and the voxels) and
-tools/pore_flow_fit.py (the extrapolation), the picture in tools/pore_picture.py.
+The parts, beside this file in tools/pores/: reading the particles and the slab in
+pore_input.py, exact volumes and areas in pore_surface.py, the voxel view (pore sizes,
+connectivity, tortuosity) in pore_voxels.py, the largest inscribed ball in pore_inscribed.py,
+the flow solve in pore_flow.py (one image), pore_flow_domain.py (the domain and the voxels) and
+pore_flow_fit.py (the extrapolation), the picture in pore_picture.py.
 
 --compare reads pores.json (running the analysis where it is missing) and packing.dat of
 several run folders and plots porosity, specific surface and permeability against the shape
@@ -214,7 +214,7 @@ COMPARED = (("porosity", "porosity"),
 def compare(run_dirs, out_png, voxel=None, quiet=False):
     """porosity, specific surface and Kozeny-Carman permeability against the shape along the
     study's lines; seeds of one shape are averaged; error bars and the table's *_sem: the
-    seed SD pooled per group of shapes (tools/study_stats.py) / sqrt(the shape's seeds)"""
+    seed SD pooled per group of shapes (tools/study/study_stats.py) / sqrt(the shape's seeds)"""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -1,15 +1,15 @@
 #!/usr/bin/python3
 """The numbers behind the paper's claims, from a study's results folder (doc/study.md).
 
-    ./ellipsoid-dep python tools/study_claims.py results/study [--law coulomb] [--N 3000]
+    ./ellipsoid-dep python tools/study/study_claims.py results/study [--law coulomb] [--N 3000]
 
-Reads deposits.csv (tools/study_table.py) and the histograms of every deposit at N and writes
+Reads deposits.csv (tools/study/study_table.py) and the histograms of every deposit at N and writes
 claims.json into the results folder (and prints it as markdown). The deposits are taken one
 selection at a time: those of one delta_r and one tangential law. `--law` names the default
 law (the study's); the first three keys are its deposits at delta_r = 0:
 
 Errors: a shape's standard error is the seed-to-seed SD pooled over its group of shapes in
-its selection, / sqrt(its seeds) (tools/study_stats.py: spheroids, general shapes below and
+its selection, / sqrt(its seeds) (tools/study/study_stats.py: spheroids, general shapes below and
 above a/c = 4; `errors` lists every group's SD and degrees of freedom per quantity).
 
 * `maxima`: for the diagonal eta = zeta and the prolate (zeta = 1, vs eta) and oblate
@@ -42,13 +42,13 @@ above a/c = 4; `errors` lists every group's SD and degrees of freedom per quanti
 * `laws`: for each other tangential law and each delta_r it was run at: its diagonal
   maximum, per shape phi(law) - phi(default law) grouped as above, and its crossings;
 * `forces`: the force measures a_n, a_f, a_n + a_f and K0 along the diagonal and the spheroid
-  lines (a key per line), their trends against a/c and verdicts (tools/study_forces.py), over
+  lines (a key per line), their trends against a/c and verdicts (tools/study/study_forces.py), over
   the deposits that have them as window means (window_steps > 0); `force_mirror`: the
   correlation of K0 with a_f across those deposits, seed by seed;
 * `depth`: delta_r at matched depth beside delta_r at the study's N, and the finite-size
-  check (tools/study_depth.py; the deposits at another N or box); null without them;
+  check (tools/study/study_depth.py; the deposits at another N or box); null without them;
 * `verdicts`: each claim's comparison with its significance and the seeds per point a
-  3-sigma verdict needs (tools/study_verdicts.py, tools/study_histograms.py).
+  3-sigma verdict needs (tools/study/study_verdicts.py, tools/study/study_histograms.py).
 """
 import argparse
 import csv

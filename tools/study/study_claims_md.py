@@ -1,4 +1,4 @@
-"""The markdown summary of claims.json that tools/study_claims.py prints."""
+"""The markdown summary of claims.json that tools/study/study_claims.py prints."""
 import math
 
 HISTOGRAMS = ("contact_normals", "long_axes")

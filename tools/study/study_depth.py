@@ -8,8 +8,8 @@ N, so their slabs hold the solid of the delta_r 0 deposits. Here, per delta_r, o
 shapes poured at matched depth: X(delta_r, matched) - X(0) and, side by side on the same
 shapes, X(delta_r, the study's N) - X(0), and their difference X(matched) - X(the study's N)
 (`depth_effect`: what depth does), with the slabs' thicknesses (shape_effects and
-depth of tools/study_verdicts.py; pooled seed SDs per group of shapes). The force measures
-(tools/study_forces.py) the same way over the deposits that have them (`forces`), and their
+depth of tools/study/study_verdicts.py; pooled seed SDs per group of shapes). The force measures
+(tools/study/study_forces.py) the same way over the deposits that have them (`forces`), and their
 trends along the diagonal at that delta_r (`force_trends`) beside delta_r 0's over the same
 shapes (`force_trends_at_0`): does the force anisotropy grow with asphericity in a
 polydisperse deposit too?

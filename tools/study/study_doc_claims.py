@@ -1,5 +1,5 @@
-"""doc/study.md's verdict tables (tools/study_doc.py): every number from claims.json's
-`verdicts` (tools/study_verdicts.py) with its error, its significance and its verdict at
+"""doc/study.md's verdict tables (tools/study/study_doc.py): every number from claims.json's
+`verdicts` (tools/study/study_verdicts.py) with its error, its significance and its verdict at
 3 sigma (or the seeds per point that verdict needs)."""
 import math
 

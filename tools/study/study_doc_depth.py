@@ -1,5 +1,5 @@
-"""doc/study.md's delta_r at matched depth and finite size (tools/study_doc.py; claims.json
-`depth`, tools/study_depth.py): the tables, the matched-depth answer to the delta_r confound
+"""doc/study.md's delta_r at matched depth and finite size (tools/study/study_doc.py; claims.json
+`depth`, tools/study/study_depth.py): the tables, the matched-depth answer to the delta_r confound
 (with the part of the effect the depth accounts for), Z at delta_r 0.6 reconciled between the
 two sets, and the finite-size bound against the effects it is compared with."""
 import math
@@ -132,7 +132,7 @@ def matched_forces_rows(matched):
 
 def depth_block(data):
     """delta_r at matched depth beside the study's N, and the finite-size check (claims.json
-    `depth`, tools/study_depth.py)"""
+    `depth`, tools/study/study_depth.py)"""
     c = data.claims.get("depth")
     if c is None:
         return ("No deposit at matched depth or at another N yet (the sets matched_depth_* and "

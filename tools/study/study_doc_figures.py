@@ -1,4 +1,4 @@
-"""doc/study.md's figure list and the study's cost (tools/study_doc.py): each figure with the
+"""doc/study.md's figure list and the study's cost (tools/study/study_doc.py): each figure with the
 paper's figure it answers (the numbers of the paper's LaTeX source), the command that draws
 it and its sets in workflow/config/paper.yaml; the deposits and CPU hours per selection from
 deposits.csv (wall_seconds x np, the runner's)."""
@@ -7,7 +7,7 @@ import os
 
 from study_doc_claims import table
 
-FIGURES_CMD = "`./ellipsoid-dep python tools/plot_figures.py results/study/table.csv`"
+FIGURES_CMD = "`./ellipsoid-dep python tools/plot/plot_figures.py results/study/table.csv`"
 STUDY_CMD = "`./ellipsoid-dep study` (rule %s)"
 # (file under results/, the paper's figure, what it shows, the command, the sets)
 FIGURES = (
@@ -15,7 +15,7 @@ FIGURES = (
      "doc/architecture.md)", "-", "-"),
     ("-", "Fig. 2 (fig:diagram): the contact algorithm's flow chart", "not redrawn", "-", "-"),
     ("study/figures/fig_sizes.png", "Fig. 3 (fig:vr-nr)", "V(r) and n(r) for several alpha, "
-     "beta; a deposit's sizes over them", FIGURES_CMD + " (sizes: `tools/plot_sizes.py "
+     "beta; a deposit's sizes over them", FIGURES_CMD + " (sizes: `tools/plot/plot_sizes.py "
      "--from-dump` of `./ellipsoid-dep run --N 1000 --dr 0.6`)", "none (one deposit)"),
     ("study/picture.png", "Fig. 4 (fig:deposit)", "the deposit, LAMMPS's rendering",
      STUDY_CMD % "picture", "`picture`"),
@@ -39,8 +39,8 @@ FIGURES = (
     ("study/pores.png", "-", "porosity, S_v, k_KC along the lines",
      STUDY_CMD % "pores_figure", "`map`, `diagonal`, `ridge` (the lines)"),
     ("oedometer/modulus_k0.png", "-", "the oedometer's modulus and K0",
-     "`./ellipsoid-dep python tools/oedometer_study.py report`", "results/oedometer (not "
-     "paper.yaml)"))
+     "`./ellipsoid-dep python tools/containers/oedometer_study.py report`",
+     "results/oedometer (not paper.yaml)"))
 
 
 def figures_block(data):

@@ -1,6 +1,6 @@
 """doc/study.md's contact-force tables and the abstract's row of the claims table
-(tools/study_doc.py): the force measures of the deposits with window means (claims.json
-`forces`, `force_mirror`; tools/study_forces.py), per shape and their trends along the lines."""
+(study_doc.py): the force measures of the deposits with window means (claims.json `forces`,
+`force_mirror`; study_forces.py), per shape and their trends along the lines."""
 from study_doc_claims import fit_cell, pm, shape, table, z_cell
 from study_forces import MEASURES, NAMES, shape_of_trend
 

@@ -1,4 +1,4 @@
-"""doc/study.md's table of the paper's claims against the numbers (tools/study_doc.py): one
+"""doc/study.md's table of the paper's claims against the numbers (tools/study/study_doc.py): one
 row per statement of the paper, every number from the results with its standard error, the
 verdicts at 3 sigma. Literature values are the cited papers' (constants below)."""
 import math

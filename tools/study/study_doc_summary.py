@@ -1,4 +1,4 @@
-"""doc/study.md's summary of findings (tools/study_doc.py): one row per finding, its number
+"""doc/study.md's summary of findings (tools/study/study_doc.py): one row per finding, its number
 +- its one standard error and its verdict at 3 sigma; the statistics behind each verdict (t,
 chi^2, Birge ratio, the seeds a verdict would need) are in the appendix table (study_doc_claims).
 Also the matched-depth answer to the delta_r confound and the finite-size bound against the

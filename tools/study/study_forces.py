@@ -18,7 +18,7 @@ histograms are not).
 
 Along each line of shapes of the default law at delta_r 0, spheres included: the diagonal
 eta = zeta, the prolate line zeta = 1 and the oblate line eta = 1, with the seed SD pooled per
-group of shapes over every shape of the selection (tools/study_stats.py; one error per shape,
+group of shapes over every shape of the selection (tools/study/study_stats.py; one error per shape,
 whichever line it is read on): per shape the mean and standard error of each; the weighted
 slope of each against the total aspect ratio a/c = eta zeta (its error scaled by the Birge
 ratio where the shapes scatter about the line beyond chance: study_stats.line_fit), the

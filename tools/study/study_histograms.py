@@ -1,7 +1,7 @@
-"""The histograms' verdicts of the study (claims.json `verdicts`, tools/study_claims.py).
+"""The histograms' verdicts of the study (claims.json `verdicts`, tools/study/study_claims.py).
 
 * `binned`: a selection's seed-mean histograms with the per-bin standard error from the seed
-  SD pooled per bin over each group of shapes (tools/study_stats.py); plot_figures draws
+  SD pooled per bin over each group of shapes (tools/study/study_stats.py); plot_figures draws
   these error bars.
 * `crossings_both`: the two readings of the paper's "crossing" angles. (i) where a shape's
   curve crosses the isotropic value 1/(4 pi), per shape with the pooled error of its
@@ -25,7 +25,7 @@ ISOTROPIC = 1.0 / (4.0 * math.pi)
 FILES = {"contact_normals": ("contact_histo", False, "fabric_anisotropy"),    # file, rising,
          "long_axes": ("orient_histo", True, "Qzz")}                         # amplitude
 PAIR_SIGMA = 3.0          # two curves "differ" when their amplitudes are this far apart
-# the shapes of Figs. 7a and 8 (tools/plot_figures.py): the diagonal and the thinnest spheroids
+# the shapes of Figs. 7a and 8 (tools/plot/plot_figures.py): the diagonal and the thinnest spheroids
 FIGURE_SHAPES = ((1.0, 1.0), (1.2, 1.2), (1.6, 1.6), (2.0, 2.0), (3.0, 3.0), (3.0, 1.0),
                  (1.0, 3.0))
 

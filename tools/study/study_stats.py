@@ -1,4 +1,4 @@
-"""Statistics of the study (doc/study.md, tools/study_claims.py, tools/plot_figures.py).
+"""Statistics of the study (doc/study.md, tools/study/study_claims.py, tools/plot/plot_figures.py).
 
 * The seed-to-seed SD of one deposit, pooled per group of shapes within one selection (one
   delta_r, one tangential law): `spheroids` (the sphere and the lines zeta = 1 and eta = 1),

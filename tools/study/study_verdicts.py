@@ -1,5 +1,5 @@
 """The verdicts of the study (claims.json `verdicts`), each with its significance and, where
-it is below 3 sigma, the seeds per point a 3-sigma verdict needs (tools/study_stats.py):
+it is below 3 sigma, the seeds per point a 3-sigma verdict needs (tools/study/study_stats.py):
 
 * `errors`: the pooled seed SD of phi, Z, Q_zz and a_z per group of shapes, per selection;
 * `maximum`: the diagonal maximum's position (statistical and fit-window errors) against the
@@ -12,7 +12,7 @@ it is below 3 sigma, the seeds per point a 3-sigma verdict needs (tools/study_st
 * `delta_r`: Q_zz, a_z, phi and Z at delta_r > 0 against delta_r = 0 over the shapes, with the
   measuring slab's depth (delta_r is confounded with it at fixed N);
 * `fall_back`: Z along the diagonal beyond its highest point;
-* `crossings`, `sphere_isotropy`: tools/study_histograms.py.
+* `crossings`, `sphere_isotropy`: tools/study/study_histograms.py.
 """
 import math
 
