@@ -10,7 +10,7 @@ histogram), each setting against the default and the default's own seed spread.
                                    [--np 1] [--checkpoint-every 0] [--out runs/accuracy]
                                    [--results results/accuracy] [--table-only]
 
-Runs one deposit at a time (tools/deposit_run.py, the settings' keywords through in.deposit's
+Runs one deposit at a time (tools/deposit/deposit_run.py, the settings' keywords through in.deposit's
 `pairkw` variable), seeds outermost, then N (several: the cost curve, bench/cost_curve), so
 that the settings and sizes of one seed run back to back and a drift of the machine's load
 reaches them alike. --checkpoint-every keeps restart checkpoints in the run folder (a deposit
@@ -33,6 +33,7 @@ ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the tools' topic folders on sys.path)
 import accuracy_table    # noqa: E402
 import deposit_run    # noqa: E402
 from bench_rows import append_row, commit, read_counters, read_rows, run_measured  # noqa: E402
@@ -68,7 +69,7 @@ def read_log(path):
 
 
 def run_deposit(setting, seed, n, np_ranks, out, checkpoint_every=0):
-    cmd = ["/usr/bin/python3", os.path.join(ROOT, "tools", "deposit_run.py"), "--np",
+    cmd = ["/usr/bin/python3", os.path.join(ROOT, "tools", "deposit", "deposit_run.py"), "--np",
            str(np_ranks), "--N", str(n), "--seed", str(seed), "--out", out, "--no-image",
            "--no-plots", "--quiet", "--checkpoint-every", str(checkpoint_every)]
     if SETTINGS[setting]:

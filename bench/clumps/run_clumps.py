@@ -31,6 +31,7 @@ ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the tools' topic folders on sys.path)
 from bench_rows import append_row, children_cpu, read_rows    # noqa: E402
 import clump_analysis    # noqa: E402
 import clump_table    # noqa: E402
@@ -108,7 +109,7 @@ def run_clump(k, seed, n, np_ranks, out, fit_dir, dt):
 
 
 def run_ellipsoids(seed, n, np_ranks, out):
-    cmd = ["/usr/bin/python3", os.path.join(ROOT, "tools", "deposit_run.py"), "--np",
+    cmd = ["/usr/bin/python3", os.path.join(ROOT, "tools", "deposit", "deposit_run.py"), "--np",
            str(np_ranks), "--N", str(n), "--eta", str(ETA), "--zeta", str(ZETA), "--dr", "0",
            "--seed", str(seed), "--out", out, "--no-image", "--no-plots", "--quiet",
            "--checkpoint-every", "0"]

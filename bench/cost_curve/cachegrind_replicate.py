@@ -22,6 +22,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the tools' topic folders on sys.path)
 from deposit_run import lmp_binary  # noqa: E402
 from run_replicate import INPUT, read_log  # noqa: E402
 

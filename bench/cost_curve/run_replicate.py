@@ -30,6 +30,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the tools' topic folders on sys.path)
 from bench_rows import (CPU_USE, LOOP, MEMORY, append_row, commit, read_counters,  # noqa: E402
                         read_rows)
 from deposit_run import lmp_binary  # noqa: E402

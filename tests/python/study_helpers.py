@@ -1,4 +1,4 @@
-"""Running the study's tools (tools/*.py, Snakemake) as the user would, from the tests:
+"""Running the study's tools (tools/*/*.py, Snakemake) as the user would, from the tests:
 the environment of the child processes, a command that must succeed (or fail), and PNG
 checks."""
 import os

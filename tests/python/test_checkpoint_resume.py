@@ -1,4 +1,4 @@
-"""Checkpoints of the deposit runner survive kill -9 (tools/deposit_run.py).
+"""Checkpoints of the deposit runner survive kill -9 (tools/deposit/deposit_run.py).
 
 A small deposit (100 spheres, one rank) writes a restart checkpoint every 1000 steps. It is
 killed with SIGKILL (runner and LAMMPS) after its first complete checkpoint, while the pour is
@@ -19,7 +19,7 @@ from checkpoint_helpers import kill_after_first_checkpoint
 from conftest import root_dir
 
 ROOT = root_dir()
-RUNNER = os.path.join(ROOT, "tools", "deposit_run.py")
+RUNNER = os.path.join(ROOT, "tools", "deposit", "deposit_run.py")
 N = 100
 EVERY = 1000    # the pour's second batch comes between steps 1000 and 2000 (at dt 3e-4)
 # an insertion region sized for volume fraction 0.6, more than random insertion reaches, so the

@@ -1,4 +1,4 @@
-"""The default deposit end to end at a tiny size: tools/deposit_run.py on 2 MPI ranks (split
+"""The default deposit end to end at a tiny size: tools/deposit/deposit_run.py on 2 MPI ranks (split
 in x and y) pours 40 particles of examples/deposit/in.deposit, stops at rest and writes its
 files: the log, packing.dat (with the force measures), the histograms (also force-weighted, and
 P(f/<f>)), the profile, the dump (semi-axes and quaternions) and the PNGs (dump image; matplotlib:
@@ -16,7 +16,7 @@ from study_helpers import PY, TOOLS, assert_image, run
 
 def test_default_deposit(tmp_path):
     out = tmp_path / "dep"
-    text = run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "2", "--N", "40",
+    text = run([PY, os.path.join(TOOLS, "deposit", "deposit_run.py"), "--np", "2", "--N", "40",
                 "--ketol", "1e-2", "--out", str(out), "--quiet", "--var", "slabmin", "0"],
                str(tmp_path), 600)
     assert "volume fraction phi" in text
@@ -84,7 +84,7 @@ def dump_edge(lines):
 def test_deposit_in_a_box_of_given_width(tmp_path):
     """in.deposit's width sets the box's edge (a deeper deposit of the same N)"""
     out = tmp_path / "dep"
-    run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "40", "--ketol", "1e-2",
+    run([PY, os.path.join(TOOLS, "deposit", "deposit_run.py"), "--np", "1", "--N", "40", "--ketol", "1e-2",
          "--out", str(out), "--quiet", "--no-image", "--no-plots", "--var", "width", "7.5",
          "--var", "slabmin", "0"], str(tmp_path), 600)
     lines = open(out / "deposit.dump").read().splitlines()
@@ -102,7 +102,7 @@ def test_thin_particles_driven_through_the_ground_are_kept(tmp_path, seed):
     and each chunk's setup warns instead of failing; before, LAMMPS stopped on lost atoms, or
     on centres on the solid side of the wall."""
     out = tmp_path / "dep"
-    run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "40", "--eta", "3",
+    run([PY, os.path.join(TOOLS, "deposit", "deposit_run.py"), "--np", "1", "--N", "40", "--eta", "3",
          "--zeta", "3", "--dr", "0.6", "--seed", str(seed), "--out", str(out), "--quiet",
          "--no-image", "--no-plots", "--var", "kn", "10", "--var", "K", "1", "--var", "dt",
          "2e-3", "--var", "maxchunks", "4", "--var", "slabmin", "0"], str(tmp_path), 600)

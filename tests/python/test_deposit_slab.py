@@ -11,7 +11,6 @@ pour: a hand-made deposit of touching unit spheres on a simple cubic lattice, 5 
 import math
 import os
 import re
-import sys
 
 import pytest
 from lammps import lammps
@@ -113,14 +112,14 @@ def test_normal_law_variable(tmp_path):
 
 
 def test_runner_fails_on_a_slab_too_thin(tmp_path):
-    """tools/deposit_run.py on a deposit whose measured slab is thinner than its input's
+    """tools/deposit/deposit_run.py on a deposit whose measured slab is thinner than its input's
     slabmin: no phi printed as a result, a non-zero exit, packing.dat says slab_ok 0 (the
     runner's own estimate passes N 200; the input asks for 9 mean diameters)"""
     from study_helpers import PY, TOOLS, run
     strict = tmp_path / "in.strict"
     strict.write_text("variable slabmin index 9\ninclude %s\n" % DEPOSIT)
     out = tmp_path / "run"
-    text = run([PY, os.path.join(TOOLS, "deposit_run.py"), "--np", "1", "--N", "200",
+    text = run([PY, os.path.join(TOOLS, "deposit", "deposit_run.py"), "--np", "1", "--N", "200",
                 "--ketol", "1e-2", "--input", str(strict), "--out", str(out), "--quiet",
                 "--no-image", "--no-plots"], str(tmp_path), 600, ok=False)
     assert "deposit_run: the deposit is too shallow for its measuring slab" in text
@@ -131,10 +130,9 @@ def test_runner_fails_on_a_slab_too_thin(tmp_path):
 
 @pytest.mark.parametrize("dr", [0.0, 0.6, 0.8])
 def test_depth_estimate_uses_the_pours_sizes(tmp_path, dr):
-    """tools/deposit_depth.py's mean volume is the one fix pour/ellipsoid logs (its sampler's,
+    """tools/deposit/deposit_depth.py's mean volume is the one fix pour/ellipsoid logs (its sampler's,
     6 digits), and its number-mean diameter that of 2000 poured particles (compute
     packing/ellipsoid's dmean, within 5 standard errors of the mean)"""
-    sys.path.insert(0, os.path.join(root_dir(), "tools"))
     import deposit_depth
     args = ["-log", str(tmp_path / "log.lammps"), "-screen", "none", "-nocite"]
     for key, value in {"N": 2000, "dr": dr, "chunk": 1, "maxchunks": 1, "image": 0,

@@ -1,4 +1,4 @@
-"""tools/oedometer_run.py's table and tools/oedometer_study.py's section, without LAMMPS.
+"""tools/containers/oedometer_run.py's table and tools/containers/oedometer_study.py's section, without LAMMPS.
 
 * The table: strain from the first step's piston height, the modulus of each step from the
   piston's stress, K0 of the slab, the phase split at the largest load, on made-up LEVEL
@@ -8,15 +8,11 @@
   a csv changed without a new report fails.
 """
 import argparse
-import os
-import sys
 
 import pytest
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-import oedometer_run  # noqa: E402
-import oedometer_study  # noqa: E402
+import oedometer_run
+import oedometer_study
 
 
 def level(k, load, piston, sigma, sxx, szz):
@@ -48,4 +44,4 @@ def test_study_section_is_generated_from_the_csv():
     with open(oedometer_study.STUDY_DOC) as f:
         committed = oedometer_study.doc_block(f.read())
     assert committed == oedometer_study.section(summary), \
-        "doc/study.md's oedometer section differs from the csv: run tools/oedometer_study.py report"
+        "doc/study.md's oedometer section differs from the csv: run tools/containers/oedometer_study.py report"

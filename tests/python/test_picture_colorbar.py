@@ -1,4 +1,4 @@
-"""tools/picture_colorbar.py: the bar shows in.deposit's own tilt colour map, beside the
+"""tools/deposit/picture_colorbar.py: the bar shows in.deposit's own tilt colour map, beside the
 picture, in degrees; a file that is not a picture gets a clear error."""
 import os
 import subprocess
@@ -14,7 +14,7 @@ import picture_colorbar  # noqa: E402
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
-TOOL = os.path.join(ROOT, "tools", "picture_colorbar.py")
+TOOL = os.path.join(ROOT, "tools", "deposit", "picture_colorbar.py")
 
 
 def test_the_map_is_in_deposits():

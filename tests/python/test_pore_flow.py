@@ -1,4 +1,4 @@
-"""The flow solve of tools/pore_flow.py (OpenFOAM's simpleFoam on the voxel image) against
+"""The flow solve of tools/pores/pore_flow.py (OpenFOAM's simpleFoam on the voxel image) against
 exact and published results, on meshes small enough for seconds.
 
 - plane Poiseuille flow in a slit of n cells: the finite-volume solution is known exactly

@@ -1,4 +1,4 @@
-"""The flow solve's default (tools/pore_flow_domain.py, tools/pore_flow_fit.py): several voxels
+"""The flow solve's default (tools/pores/pore_flow_domain.py, tools/pores/pore_flow_fit.py): several voxels
 extrapolated to a vanishing voxel, a box cut out of a wider slab, and the progress lines.
 
 - the fit k = k0 + C h^p: p and k0 recovered from three exact values, the fixed-p least

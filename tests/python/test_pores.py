@@ -1,4 +1,4 @@
-"""tools/pores.py (doc/howto_pores.md) against analytic results and independent oracles.
+"""tools/pores/pores.py (doc/howto_pores.md) against analytic results and independent oracles.
 
 - simple cubic lattice of touching spheres (diameter d = 1): porosity 1 - pi/6, specific
   surface pi/d (also for slab planes that cut the spheres: Archimedes' zones), largest

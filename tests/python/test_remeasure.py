@@ -1,4 +1,4 @@
-"""tools/remeasure_deposit.py measures a finished deposit again exactly as in.deposit measured it.
+"""tools/deposit/remeasure_deposit.py measures a finished deposit again exactly as in.deposit measured it.
 
 Specification:
 - a deposit's dump read back in in.deposit's measure mode gives the packing.dat and the two
@@ -9,16 +9,11 @@ Specification:
   column's share, not by 2 d;
 - in place, the first measurement is kept as packing.dat.orig.
 """
-import os
-import sys
-
 import pytest
 
 import ed_helpers_pour as h
-from conftest import root_dir
+import remeasure_deposit
 
-sys.path.insert(0, os.path.join(root_dir(), "tools"))
-import remeasure_deposit    # noqa: E402
 COUNTS = ("N", "steps", "at_rest", "Nslab", "rattlers", "seed")
 
 

@@ -208,7 +208,7 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
             (d / (h + ".dat")).write_text("# t\n1000 2\n1 0.5 %g 0.5\n2 1.5 %g 0.5\n"
                                           % (seed, 2 * seed))
         packings.append(str(d / "packing.dat"))
-    run([PY, os.path.join(TOOLS, "study_table.py"), "--results", str(res)] + packings,
+    run([PY, os.path.join(TOOLS, "study", "study_table.py"), "--results", str(res)] + packings,
         str(tmp_path), 60)
     (row,) = list(csv.DictReader(open(res / "table.csv")))
     assert row["law"] == "viscous" and int(row["seeds"]) == 3
@@ -234,7 +234,7 @@ def test_table_mean_and_standard_error_over_seeds(tmp_path):
     # a deposit that ran out of chunks before rest is not a result: the table refuses it
     moving = res / "points" / "eta1.2_zeta1.4_dr0.3_N500_viscous" / "s1" / "packing.dat"
     moving.write_text(moving.read_text() + "at_rest 0\n")
-    failed = subprocess.run([PY, os.path.join(TOOLS, "study_table.py"), "--results", str(res)]
+    failed = subprocess.run([PY, os.path.join(TOOLS, "study", "study_table.py"), "--results", str(res)]
                             + packings, capture_output=True, text=True, timeout=60)
     assert failed.returncode != 0
     assert "not at rest" in failed.stderr and str(moving.parent) in failed.stderr
@@ -269,7 +269,7 @@ def test_figures_compare_tangential_laws(tmp_path):
             w = csv.writer(f)
             w.writerow(cols)
             w.writerows(data)
-    out = run([PY, os.path.join(TOOLS, "plot_figures.py"), str(tmp_path / "table.csv")],
+    out = run([PY, os.path.join(TOOLS, "plot", "plot_figures.py"), str(tmp_path / "table.csv")],
               str(tmp_path), 120)
     assert_image(str(tmp_path / "fig_density_laws.png"))
     assert "fig_density_laws.png" in out

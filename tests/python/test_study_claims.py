@@ -1,4 +1,4 @@
-"""tools/study_claims.py against a synthetic results folder with known answers.
+"""tools/study/study_claims.py against a synthetic results folder with known answers.
 
 At delta_r = 0 with the default law (coulomb):
 * phi on the diagonal is a parabola with its vertex at 1.45 (two seeds, +-0.001 about it,
@@ -29,7 +29,7 @@ import pytest
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
                       os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
-TOOL = os.path.join(ROOT, "tools", "study_claims.py")
+TOOL = os.path.join(ROOT, "tools", "study", "study_claims.py")
 MAGIC = math.acos(1 / math.sqrt(3))
 THETA = (np.arange(18) + 0.5) * math.pi / 18
 P2 = 0.5 * (3 * np.cos(THETA) ** 2 - 1)

@@ -1,4 +1,4 @@
-"""tools/study_stats.py and the verdicts of tools/study_verdicts.py and study_histograms.py
+"""tools/study/study_stats.py and the verdicts of tools/study/study_verdicts.py and study_histograms.py
 on synthetic deposits with known answers (in memory; no deposit runs).
 
 Every shape has two seeds at +-e about its value, so its seed SD is e sqrt(2) and a pooled

@@ -1,15 +1,15 @@
 """The command-line tools on bad input: one clear line and a non-zero exit, never a traceback,
 and never a failed run's numbers as a result.
 
-* tools/pores.py (./ellipsoid-dep pores) on hand-made run folders: a truncated dump, a
+* tools/pores/pores.py (./ellipsoid-dep pores) on hand-made run folders: a truncated dump, a
   packing.dat without its slab, voxel sizes whose image would not fit in memory (the message
   states what it would need), no atoms, a zero quaternion, overlapping particles (a negative
   porosity);
-* tools/deposit_run.py (./ellipsoid-dep run): options out of range and an --out that cannot be
+* tools/deposit/deposit_run.py (./ellipsoid-dep run): options out of range and an --out that cannot be
   created, each named in one line; a deposit too shallow for its measuring slab is refused
   before LAMMPS runs, with the smallest N for the shape (which passes the same check);
-* tools/oedometer_run.py refuses a deposit in its folder made with other settings;
-  tools/oedometer_study.py run writes nothing when it ran nothing.
+* tools/containers/oedometer_run.py refuses a deposit in its folder made with other settings;
+  tools/containers/oedometer_study.py run writes nothing when it ran nothing.
 No LAMMPS here (tests/python/test_deposit_slab.py runs in.deposit's side).
 """
 import json
@@ -20,12 +20,10 @@ import sys
 
 import pytest
 
+import deposit_depth
+import oedometer_run
+import oedometer_study
 from study_helpers import PY, TOOLS, lmp_env
-
-sys.path.insert(0, TOOLS)
-import deposit_depth  # noqa: E402
-import oedometer_run  # noqa: E402
-import oedometer_study  # noqa: E402
 
 
 def write_run_folder(folder, centres, semi, box, zlo=1.0, zhi=3.0, quats=None, packing=None):
@@ -71,7 +69,7 @@ def assert_one_line_error(code, out, *words):
 
 
 def pores(folder, *more):
-    return run_tool([os.path.join(TOOLS, "pores.py"), str(folder), "--quiet"] + list(more))
+    return run_tool([os.path.join(TOOLS, "pores", "pores.py"), str(folder), "--quiet"] + list(more))
 
 
 # ---- pores.py -------------------------------------------------------------------------------
@@ -133,7 +131,7 @@ def test_pores_no_atoms_zero_quaternion_and_overlap(tmp_path):
 
 
 def deposit_run(*args):
-    return run_tool([os.path.join(TOOLS, "deposit_run.py")] + list(args))
+    return run_tool([os.path.join(TOOLS, "deposit", "deposit_run.py")] + list(args))
 
 
 @pytest.mark.parametrize("args,named", [

@@ -1,0 +1,57 @@
+"""The checkpoints of tools/deposit/deposit_run.py: LAMMPS restart files written alternately to
+checkpoint.a and checkpoint.b in the run folder; the newer complete one is resumed from."""
+import os
+import struct
+
+CHECKPOINTS = ("checkpoint.a", "checkpoint.b")
+RESTART_MAGIC = b"LammpS RestartT\0"
+# flags of the restart header (enum in LAMMPS lmprestart.h) up to the time step: strings
+# (VERSION, UNITS), ints (SMALLINT, TAGINT, IMAGEINT), the size of a bigint, NTIMESTEP
+RESTART_STRING_FLAGS, RESTART_INT_FLAGS, RESTART_BIGINT_SIZE, RESTART_NTIMESTEP = \
+    (0, 4), (1, 2, 48), 3, 5
+
+
+def checkpoint_step(path):
+    """Time step of a complete LAMMPS restart file (its magic string at both ends), else None."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+            f.seek(0, os.SEEK_END)
+            if f.tell() < 2 * len(RESTART_MAGIC):
+                return None
+            f.seek(-len(RESTART_MAGIC), os.SEEK_END)
+            tail = f.read()
+    except OSError:
+        return None
+    if not head.startswith(RESTART_MAGIC) or tail != RESTART_MAGIC:
+        return None
+    pos, bigint = len(RESTART_MAGIC) + 8, 8    # after the endian flag and format revision
+    try:
+        while True:
+            (flag,) = struct.unpack_from("i", head, pos)
+            pos += 4
+            if flag in RESTART_STRING_FLAGS:
+                (n,) = struct.unpack_from("i", head, pos)
+                pos += 4 + n
+            elif flag in RESTART_INT_FLAGS or flag == RESTART_BIGINT_SIZE:
+                (value,) = struct.unpack_from("i", head, pos)
+                pos += 4
+                if flag == RESTART_BIGINT_SIZE:
+                    bigint = value
+            elif flag == RESTART_NTIMESTEP:
+                return struct.unpack_from("q" if bigint == 8 else "i", head, pos)[0]
+            else:
+                return None
+    except struct.error:
+        return None
+
+
+def newest_checkpoint(out):
+    """(path, step) of the newer complete checkpoint in the run folder, or (None, None)."""
+    found = [(checkpoint_step(os.path.join(out, name)), os.path.join(out, name))
+             for name in CHECKPOINTS]
+    found = [(step, path) for step, path in found if step is not None]
+    if not found:
+        return None, None
+    step, path = max(found)
+    return path, step

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Permeability of deposits along the study's lines from the flow solve (doc/howto_pores.md).
+
+    ./ellipsoid-dep python tools/pores/pore_flow_lines.py --out results/flow RUN_DIR [RUN_DIR ...]
+        [--flow-voxels-per-d N1,N2,N3] [--flow-box L] [--directions xx,zz]
+
+For each run folder (deposit.dump + packing.dat, read only) the flow solve of
+pore_flow_domain.flow_permeability at its defaults (a box of side 5 d cut out of the slab, three
+voxels, extrapolated to a vanishing voxel), or at the voxels d / N given (three or more:
+extrapolated; one: that voxel alone; flat shapes at the default voxels, fractions of the
+smallest semi-axis, need (eta zeta^2)^(1/3) times more voxels per d than spheres in each
+direction) writes OUT/<folder name>.json
+(skipped when it exists: one command per deposit, and reruns only add what is missing); then
+OUT/flow_lines.csv (one row per deposit: eta, zeta, seed, porosity, k_xx, k_zz in d^2 with
+their errors, the anisotropy, the ratio to Kozeny-Carman, the finest voxel's cells, the
+iterations and seconds) and OUT/flow_lines.png (k_xx, k_zz, anisotropy and k_zz / k_KC
+against the aspect ratio, seeds as separate points and their mean).
+"""
+import argparse
+import csv
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
+import pore_flow_domain  # noqa: E402
+import pore_surface  # noqa: E402
+import pores  # noqa: E402
+
+
+def solve_folder(folder, out, voxels_per_d, directions, side):
+    path = os.path.join(out, os.path.basename(os.path.normpath(folder)) + ".json")
+    if os.path.exists(path):
+        with open(path) as f:
+            return json.load(f)
+    progress = pores.Progress()
+    particles, box = pores.read_dump(os.path.join(folder, "deposit.dump"))
+    pk = pores.read_slab(folder)
+    zlo, zhi = pk["zlo"], pk["zhi"]
+    d = pore_flow_domain.volume_diameter(particles)
+    t0 = time.time()
+    k = pore_flow_domain.flow_permeability(
+        particles, box, zlo, zhi, voxels_per_d and [d / n for n in voxels_per_d], progress,
+        directions=directions, side=side)
+    v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
+    solid = (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum()
+    porosity = 1.0 - solid / v_slab
+    s_v = pore_surface.slab_surface(particles, zlo, zhi)[0] / v_slab
+    row = {"folder": folder, "eta": pk.get("eta"), "zeta": pk.get("zeta"),
+           "seed": pk.get("seed"), "porosity": porosity, "specific_surface": s_v,
+           "k_kozeny_carman": porosity ** 3 / (pores.KOZENY_CONSTANT * s_v ** 2) / d ** 2,
+           "flow": k, "wall_seconds": time.time() - t0}
+    with open(path, "w") as f:
+        json.dump(row, f, indent=1)
+    return row
+
+
+def table(rows):
+    out = []
+    for r in rows:
+        k = r["flow"]
+        finest = k["resolutions"][-1]
+        kxx = 0.5 * (k["xx"] + k["yy"]) if "yy" in k else k["xx"]
+        out.append({"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"],
+                    "porosity": r["porosity"],
+                    "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
+                    "k_yy": k.get("yy", ""), "k_zz": k["zz"], "k_zz_error": k.get("zz_error", ""),
+                    "anisotropy": k["anisotropy_xx_zz"],
+                    "anisotropy_error": k.get("anisotropy_xx_zz_error", ""),
+                    "k_zz_over_kozeny_carman": k["zz"] / r["k_kozeny_carman"],
+                    "k_xx_over_kozeny_carman": kxx / r["k_kozeny_carman"],
+                    "voxels_per_d": " ".join("%.3g" % q["voxels_per_d"]
+                                             for q in k["resolutions"]),
+                    "cells_xx": finest["cells"]["xx"], "cells_zz": finest["cells"]["zz"],
+                    "iterations": " ".join("%s:%d" % kv
+                                           for kv in sorted(finest["iterations"].items())),
+                    "seconds": round(r["wall_seconds"])})
+    return sorted(out, key=lambda r: (r["eta"], r["zeta"], r["seed"]))
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    panels = (("k_xx", r"$k_{xx}$ ($d^2$)"), ("k_zz", r"$k_{zz}$ ($d^2$)"),
+              ("anisotropy", r"$k_{xx} / k_{zz}$"),
+              ("k_zz_over_kozeny_carman", r"$k_{zz} / k_{KC}$"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.0 * len(panels), 3.4))
+    x = np.array([r["eta"] for r in rows])
+    for ax, (key, label) in zip(axes, panels):
+        y = np.array([r[key] for r in rows])
+        ax.plot(x, y, "o", mfc="none", color="C0", label="seeds")
+        etas = sorted(set(x))
+        ax.plot(etas, [y[x == e].mean() for e in etas], "-", color="C0", label="mean")
+        ax.set(xlabel=r"$\eta = \zeta$", ylabel=label)
+        ax.legend(fontsize=7)
+    fig.suptitle("flow solve (OpenFOAM simpleFoam), voxels d/%s, diagonal, delta_r = 0"
+                 % rows[0]["voxels_per_d"].replace(" ", ", d/"), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dirs", nargs="+", metavar="RUN_DIR")
+    ap.add_argument("--out", required=True, help="folder of the small outputs")
+    ap.add_argument("--flow-voxels-per-d", default=None, metavar="N1,N2,N3",
+                    help="voxels d / N instead of the default (fractions of the smallest "
+                         "semi-axis); one N: that voxel alone, no extrapolation")
+    ap.add_argument("--flow-box", type=float, default=pore_flow_domain.FLOW_BOX, metavar="L",
+                    help="side of the cut box in d (0: the whole slab)")
+    ap.add_argument("--directions", default="xx,zz")
+    args = ap.parse_args(argv)
+    per_d = None
+    if args.flow_voxels_per_d:
+        try:
+            per_d = [float(n) for n in args.flow_voxels_per_d.split(",")]
+        except ValueError:
+            per_d = []
+        if len(per_d) == 2 or not per_d or not all(n > 0 for n in per_d):
+            ap.error("--flow-voxels-per-d %s: one N or three or more, all > 0"
+                     % args.flow_voxels_per_d)
+    os.makedirs(args.out, exist_ok=True)
+    rows = []
+    for folder in args.run_dirs:
+        try:
+            rows.append(solve_folder(folder, args.out, per_d,
+                                     tuple(args.directions.split(",")), args.flow_box))
+        except (ValueError, RuntimeError, OSError) as e:    # RuntimeError: pore_flow.FlowError
+            print("pore_flow_lines: %s skipped: %s" % (folder, e), file=sys.stderr)
+    if not rows:
+        sys.exit("pore_flow_lines: no deposit solved")
+    t = table(rows)
+    with open(os.path.join(args.out, "flow_lines.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(t[0]))
+        w.writeheader()
+        w.writerows(t)
+    plot(t, os.path.join(args.out, "flow_lines.png"))
+    for r in t:
+        print("eta %-4g zeta %-4g seed %-3g  k_xx %.4g  k_zz %.4g  k_xx/k_zz %.3f  k_zz/k_KC %.3f"
+              % (r["eta"], r["zeta"], r["seed"], r["k_xx"], r["k_zz"], r["anisotropy"],
+                 r["k_zz_over_kozeny_carman"]))
+
+
+if __name__ == "__main__":
+    main()
