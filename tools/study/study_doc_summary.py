@@ -101,9 +101,18 @@ def summary_rows(data):
                         ("a_f", "a_f (the forces' own part)"), ("K0", "K0")):
             if q in f["trends"]:
                 t = f["trends"][q]["slope_per_unit_a/c"]
-                rows.append(["%s against a/c on %s (a/c %g-%g)" % (what, LINE_NAMES[line],
-                                                                 t["from_a/c"], t["to_a/c"]),
-                             "slope " + signed(t["slope"], t["se"], 4), brief(t["verdict"])])
+                label = "%s against a/c on %s (a/c %g-%g)" % (what, LINE_NAMES[line],
+                                                             t["from_a/c"], t["to_a/c"])
+                if t.get("lack_of_fit"):    # no line: the thinnest against the roundest
+                    ends = f["trends"][q]["thinnest_minus_roundest"]
+                    rows.append([label, "thinnest - roundest %s; not linear in a/c (chi^2 %.0f "
+                                 "on %d dof about a line)" % (signed(ends["difference"],
+                                                                     ends["se"], 3),
+                                                              t["chi2"], t["chi2_dof"]),
+                                 brief(ends["verdict"])])
+                    continue
+                rows.append([label, "slope " + signed(t["slope"], t["se"], 4),
+                             brief(t["verdict"])])
     mirror = data.claims.get("force_mirror")
     if mirror:
         rows.append(["K0 mirrors a_f seed by seed", "r = %.2f (%d deposits)"
