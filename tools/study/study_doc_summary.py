@@ -9,6 +9,7 @@ from study_doc_claims import brief, pm, shape, signed, table
 from study_doc_depth import depth_share, finite_size_bound, matched
 from study_doc_paper import diff
 from study_doc_forces import LINE_NAMES, mirror_meaning
+from study_forces import shape_of_trend
 from study_stats import SIGMA
 
 def per_shape(m, digits):
@@ -103,13 +104,15 @@ def summary_rows(data):
                 t = f["trends"][q]["slope_per_unit_a/c"]
                 label = "%s against a/c on %s (a/c %g-%g)" % (what, LINE_NAMES[line],
                                                              t["from_a/c"], t["to_a/c"])
-                if t.get("lack_of_fit"):    # no line: the thinnest against the roundest
+                if t.get("lack_of_fit"):    # no line: its course, else the ends
                     ends = f["trends"][q]["thinnest_minus_roundest"]
+                    course = shape_of_trend(f["trends"][q])
                     rows.append([label, "thinnest - roundest %s; not linear in a/c (chi^2 %.0f "
                                  "on %d dof about a line)" % (signed(ends["difference"],
                                                                      ends["se"], 3),
                                                               t["chi2"], t["chi2_dof"]),
-                                 brief(ends["verdict"])])
+                                 course if course.startswith("not monotone")
+                                 else brief(ends["verdict"])])
                     continue
                 rows.append([label, "slope " + signed(t["slope"], t["se"], 4),
                              brief(t["verdict"])])
