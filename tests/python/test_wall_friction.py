@@ -23,9 +23,10 @@ import pytest
 
 import scenes
 import test_wall_region as regions
+from test_wall_region import per_atom
 from conftest import new_lammps
 
-E, NU, REST = 1.0e5, 0.3, 0.8
+E, NU, REST = regions.E, regions.NU, regions.REST
 RADIUS = regions.RADIUS
 KT, MU = 2.0e3, 0.5
 OURS = f"hertz/material {E} {NU} {REST} tangential history {KT} {MU} limit_damping"
@@ -61,10 +62,6 @@ def build(style, wall_words, positions, extra="", spin=None, seed=3):
     return lmp
 
 
-def per_atom(lmp, name):
-    return regions.per_atom(lmp, name)
-
-
 def compare(wall_words, positions, extra="", steps=(1, 50, 500, 1500), spin=None,
             torque_check=None):
     """Forces and positions of the two codes after each run of `steps` (torques by
@@ -98,9 +95,8 @@ def compare(wall_words, positions, extra="", steps=(1, 50, 500, 1500), spin=None
         ref.close()
 
 
-def region_words(region):
-    return (f"wall/gran/region/ellipsoid {OURS} region r",
-            f"wall/gran/region {LAMMPS} region r")
+REGION_WORDS = (f"wall/gran/region/ellipsoid {OURS} region r",
+                f"wall/gran/region {LAMMPS} region r")
 
 
 def floor_torques(checked):
@@ -122,7 +118,7 @@ def test_floor_friction_equals_lammps_forces_and_lever_ratio():
     region, _ = regions.block_positions()
     floor = [(1.0 + 0.45 * k, 1.2 + 0.35 * (k % 3), 0.5 + RADIUS - 0.002) for k in range(6)]
     checked = []
-    friction, touching = compare(region_words(region), floor, extra=region,
+    friction, touching = compare(REGION_WORDS, floor, extra=region,
                                  torque_check=floor_torques(checked))
     assert touching == 6
     assert sum(checked) >= 6
@@ -142,7 +138,7 @@ def test_region_friction_equals_lammps(case, motion):
     force of each contact equals LAMMPS's along the whole trajectory."""
     region, positions = case()
     extra = "variable dx equal 0.5*time\nvariable theta equal 2.0*time\n" + region + motion
-    friction, touching = compare(region_words(region), positions, extra=extra)
+    friction, touching = compare(REGION_WORDS, positions, extra=extra)
     assert touching >= 3
     assert friction > 1e-3
 
