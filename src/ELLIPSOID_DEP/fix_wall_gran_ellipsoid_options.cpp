@@ -82,7 +82,12 @@ FixWallGranEllipsoid::FixWallGranEllipsoid(LAMMPS *lmp, int narg, char **arg,
       if (!region_id.empty()) error->all(FLERR, iarg, "{}: region given twice", label);
       region_id = arg[iarg + 1];
       iarg += 2;
-    } else if (region_style && (word == "wiggle" || word == "shear" || word == "servo")) {
+    } else if (region_style && word == "servo") {
+      error->all(FLERR, iarg,
+                 "{}: servo is a keyword of fix wall/gran/ellipsoid's planes; a piston in this "
+                 "region is a plane servo with 'area A' (its area) beside this fix",
+                 label);
+    } else if (region_style && (word == "wiggle" || word == "shear")) {
       error->all(FLERR, iarg,
                  "{}: {} is a keyword of fix wall/gran/ellipsoid's planes; a region wall moves "
                  "with its region (region keywords move and rotate)",

@@ -36,7 +36,9 @@ def box(boundary="f f f"):
     ("f f f", "region r cylinder z 2 2 1.5 0.5 3.5", f"{LAW} region r shear x 1",
      "shear is a keyword of fix wall/gran/ellipsoid's planes"),
     ("f f f", "region r cylinder z 2 2 1.5 0.5 3.5",
-     f"{LAW} region r servo force 1 gain 1 vmax 1", "servo is a keyword of fix"),
+     f"{LAW} region r servo force 1 gain 1 vmax 1",
+     "servo is a keyword of fix wall/gran/ellipsoid's planes; a piston in this region is a "
+     "plane servo with 'area A'"),
     ("f f f", "region r cylinder z 2 2 1.5 0.5 3.5", f"{LAW}", "needs region ID after the force law"),
     ("f f f", "region r cylinder z 2 2 1.5 0.5 3.5", f"{LAW} region r bogus",
      "Unknown fix wall/gran/region/ellipsoid keyword 'bogus'"),

@@ -7,7 +7,8 @@ where the Hertz contact carries the target, to 1e-6 of the target, with an overs
 force below 5 % (the controller is first order: the lid has no inertia, the sphere little
 against the contact's stiffness at this gain); the lid's height then equals the analytic one,
 2 r - 2 xi with F = 4/3 E* sqrt(R*) xi^1.5 at each of the two contacts. With `stress` the
-target is the stress times the box's cross-section. A restart continues the servo exactly,
+target is the stress times the box's cross-section, with `area A` on A: a piston in a cylinder region is
+this plane servo with area pi R^2. A restart continues the servo exactly,
 with or without the filter of its measure. The loop's bound at the time step's frequency (it
 includes the contacts' stiffness and the particle's inertia) and the filter: below.
 Bad servo words: test_wall_motion.py.
@@ -75,6 +76,34 @@ def test_servo_stress_on_a_given_area(words):
     force = lid_force(lmp)
     lmp.close()
     assert force == pytest.approx(TARGET, rel=1e-6)
+
+
+def test_piston_in_a_cylinder_region():
+    """A piston: the plane servo with `area pi R^2` above a sphere inside a cylinder region
+    (fix wall/gran/region/ellipsoid, its lo cap the floor, its hi cap open): the piston
+    reaches the stress on its area, the region's floor carries that force, the side nothing."""
+    cylinder = 0.8
+    area = math.pi * cylinder**2
+    lmp = new_lammps()
+    lmp.commands_string(scenes.spheres_in_box("ellipsoid", (2, 2, 3), [(1.0, 1.0, RADIUS)],
+                                              RADIUS))
+    lmp.commands_string(f"""
+        region can cylinder z 1 1 {cylinder} 0 2.5 open 2
+        fix can all wall/gran/region/ellipsoid {LAW} region can
+        fix lid all wall/gran/ellipsoid {LAW} zplane NULL 1.05 servo stress {TARGET / area} gain 0.05 vmax 0.5 area {area}
+        fix i all nve/ellipsoid
+        timestep 1e-4
+        run 12000 post no
+        """)
+    pushed = lid_force(lmp)
+    floor = [lmp.extract_fix("can", 0, 1, k) for k in range(3)]
+    side = [lmp.extract_fix("can", 0, 1, k) for k in range(3, 6)]
+    z_sphere = lmp.numpy.extract_atom("x")[0][2]
+    lmp.close()
+    assert pushed == pytest.approx(TARGET, rel=1e-6)
+    assert floor == pytest.approx([0.0, 0.0, -TARGET], rel=1e-6, abs=1e-12)
+    assert side == [0.0, 0.0, 0.0]
+    assert z_sphere == pytest.approx(RADIUS - hertz_overlap(TARGET, RADIUS), rel=1e-6)
 
 
 def test_three_servo_walls_press_a_sphere_into_a_corner():
