@@ -11,6 +11,7 @@
 """
 import math
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -18,8 +19,7 @@ import pytest
 from conftest import new_lammps, root_dir
 
 REPOSE = os.path.join(root_dir(), "examples", "repose")
-import sys
-sys.path.insert(0, REPOSE)
+sys.path.insert(0, REPOSE)    # the example's own module, as its scripts import it
 import repose_angle    # noqa: E402
 
 
