@@ -85,27 +85,50 @@ def runs_summary(results):
     return float(angles.mean()), float(angles.std(ddof=1) / math.sqrt(len(angles))), len(angles)
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--table", nargs="+", required=True, metavar="RUN_DIR",
-                   help="run folders of run_repose.py (their repose.json)")
-    p.add_argument("--figure", help="write the profiles and fitted flanks here")
-    a = p.parse_args()
+def read_runs(folders):
+    """{(eta, zeta, mu): [repose.json of each run]} of run folders"""
     groups = {}
-    for d in a.table:
-        path = os.path.join(d, "repose.json")
+    for d in folders:
+        path = os.path.join(d, "repose.json") if os.path.isdir(d) else d
         if not os.path.isfile(path):
-            sys.exit(f"repose_angle.py: no {path} (run run_repose.py --out {d} first)")
+            sys.exit(f"repose_angle.py: no {path} (run run_repose.py --out DIR first)")
         r = json.load(open(path))
         groups.setdefault((r["eta"], r["zeta"], r["mu"]), []).append(r)
-    print("| eta | zeta | mu | runs | angle (deg) | left - right (deg) | heap height (d) |")
-    print("|---|---|---|---|---|---|---|")
+    return groups
+
+
+def table(groups):
+    """the markdown tables of the README: each case, then each shape against spheres"""
+    rows = ["| eta | zeta | mu | runs | angle (deg) | left - right (deg) | heap height (d) |",
+            "|---|---|---|---|---|---|---|"]
+    summary = {}
     for (eta, zeta, mu), rs in sorted(groups.items()):
         mean, se, n = runs_summary(rs)
+        summary[(eta, zeta, mu)] = (mean, se, n)
         diff = np.array([r["left"] - r["right"] for r in rs])
-        dse = diff.std(ddof=1) / math.sqrt(n) if n > 1 else math.hypot(rs[0]["left_se"], rs[0]["right_se"])
-        print(f"| {eta:g} | {zeta:g} | {mu:g} | {n} | {mean:.1f} +- {se:.1f} | "
-              f"{diff.mean():+.1f} +- {dse:.1f} | {np.mean([r['height'] for r in rs]):.1f} |")
+        dse = (diff.std(ddof=1) / math.sqrt(n) if n > 1
+               else math.hypot(rs[0]["left_se"], rs[0]["right_se"]))
+        rows.append(f"| {eta:g} | {zeta:g} | {mu:g} | {n} | {mean:.1f} +- {se:.1f} | "
+                    f"{diff.mean():+.1f} +- {dse:.1f} | {np.mean([r['height'] for r in rs]):.1f} |")
+    rows += ["", "| shape against spheres | mu | difference (deg) | sigma |", "|---|---|---|---|"]
+    for (eta, zeta, mu), (mean, se, _) in sorted(summary.items()):
+        if (eta, zeta) == (1.0, 1.0) or (1.0, 1.0, mu) not in summary:
+            continue
+        ref, ref_se, _ = summary[(1.0, 1.0, mu)]
+        err = math.hypot(se, ref_se)
+        rows.append(f"| eta {eta:g} zeta {zeta:g} | {mu:g} | {mean - ref:+.1f} +- {err:.1f} | "
+                    f"{abs(mean - ref) / err:.1f} |")
+    return "\n".join(rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--table", nargs="+", required=True, metavar="RUN",
+                   help="run folders of run_repose.py (or their repose.json files)")
+    p.add_argument("--figure", help="write the profiles and fitted flanks here")
+    a = p.parse_args()
+    groups = read_runs(a.table)
+    print(table(groups))
     if a.figure:
         import matplotlib
         matplotlib.use("Agg")
