@@ -50,8 +50,13 @@ def analyse(run):
     fit = silo_wall.fit_janssen(w["h"][keep], w["sigma_w"][keep], run["rho_g"], run["R"])
     _, _, k_data, mu_data = silo_wall.profile_ratios(w["sigma_w"][keep], w["tau_w"][keep],
                                                      w["sigma_v"][keep])
+    halves = {}
+    for name, part in (("upper", keep & (w["h"] < run["H"] / 2)),
+                       ("lower", keep & (w["h"] >= run["H"] / 2))):
+        _, _, halves["K_" + name], halves["mu_" + name] = silo_wall.profile_ratios(
+            w["sigma_w"][part], w["tau_w"][part], w["sigma_v"][part])
     window = np.median(w["sd_sigma_w"][keep] / w["sigma_w"][keep])
-    return dict(fit, K_data=k_data, mu_data=mu_data, window=window,
+    return dict(fit, K_data=k_data, mu_data=mu_data, window=window, **halves,
                 side=run["side"] / run["weight"], bins=int(keep.sum()))
 
 
@@ -84,17 +89,27 @@ def table(groups):
     """the README's table (markdown) of {(R, shape): [run, ...]}"""
     lines = ["| R / d | shape | seeds | N | H / R | rho_b g | Janssen fit: K | mu | lambda / R "
              "| rms / A | data: K = sigma_w / sigma_v | mu_mob = tau_w / sigma_w "
-             "| side's share of the weight |",
-             "|---" * 13 + "|"]
+             "| upper half: K, mu_mob | lower half: K, mu_mob | side's share of the weight |",
+             "|---" * 15 + "|"]
     for (radius, shape), group in groups.items():
         s, n = summary(group)
         lam_r = (s["lambda"][0] / radius, math.nan, s["lambda"][2] / radius)
         rms = (s["rms"][0] / s["A"][0], math.nan, math.nan)
-        lines.append("| %g | %s | %d | %.0f | %.1f | %s | %s | %s | %s | %.3f | %s | %s | %s |" % (
-            radius, LABELS[shape], n, s["N"][0], s["H"][0] / radius, pm(s["rho_g"], 3),
-            pm(s["K"], 3), pm(s["mu"], 3), pm(lam_r, 2), rms[0], pm(s["K_data"], 3),
-            pm(s["mu_data"], 3), pm(s["side"], 3)))
+        lines.append("| %g | %s | %d | %.0f | %.1f | %s | %s | %s | %s | %.3f | %s | %s "
+                     "| %s, %s | %s, %s | %s |" % (
+                         radius, LABELS[shape], n, s["N"][0], s["H"][0] / radius,
+                         pm(s["rho_g"], 3), pm(s["K"], 2), pm(s["mu"], 3), pm(lam_r, 2), rms[0],
+                         pm(s["K_data"], 3), pm(s["mu_data"], 3), pm(s["K_upper"], 2),
+                         pm(s["mu_upper"], 2), pm(s["K_lower"], 2), pm(s["mu_lower"], 2),
+                         pm(s["side"], 3)))
     return "\n".join(lines)
+
+
+def seed_mean(group):
+    """the seeds' mean wall table over the bins all have (the same z bins from the floor)"""
+    n = min(len(run["wall"]["h"]) for run in group)
+    return {key: np.mean([run["wall"][key][:n] for run in group], axis=0)
+            for key in ("h", "sigma_w", "tau_w", "sigma_v")}
 
 
 def figure(groups, path):
@@ -109,20 +124,22 @@ def figure(groups, path):
                 top.plot(w["h"], w["sigma_w"], "o", ms=3, color=colour, alpha=0.6)
                 top.plot(w["h"], w["tau_w"], "^", ms=3, mfc="none", color=colour, alpha=0.6)
                 top.plot(w["h"], w["sigma_v"], ":", lw=0.8, color=colour)
-                k, mob, _, _ = silo_wall.profile_ratios(w["sigma_w"], w["tau_w"], w["sigma_v"])
-                bottom.plot(w["h"], k, "o-", ms=3, lw=0.7, color=colour, alpha=0.6)
-                bottom.plot(w["h"], mob, "^--", ms=3, lw=0.7, mfc="none", color=colour,
-                            alpha=0.6)
+            m = seed_mean(groups[(r, shape)])
+            k, mob, _, _ = silo_wall.profile_ratios(m["sigma_w"], m["tau_w"], m["sigma_v"])
+            bottom.plot(m["h"], k, "o-", ms=3, color=colour, label=LABELS[shape])
+            bottom.plot(m["h"], mob, "^--", ms=3, mfc="none", color=colour)
             hh = np.linspace(0.0, max(run["H"] for run in groups[(r, shape)]), 100)
             top.plot(hh, silo_wall.janssen(hh, s["A"][0], s["lambda"][0]), "-", color=colour,
                      label="%s (%d seeds): K %.2f, $\\mu$ %.2f" % (LABELS[shape], n, s["K"][0],
                                                                    s["mu"][0]))
-        top.set_title("R = %g d: wall stress (o normal, triangles shear), Janssen fit (lines), "
-                      "bulk vertical stress (dotted)" % radius, fontsize=9)
+        top.set_title("R = %g d: wall stress (o normal, triangles shear), Janssen fit\n"
+                      "(lines), the bulk's vertical stress (dotted); each seed" % radius,
+                      fontsize=9)
         top.set_ylabel(r"stress / ($\rho g d$)")
         top.legend(fontsize=7)
         bottom.set_title(r"K = $\sigma_w / \sigma_v$ (o), $\mu_{mob} = \tau_w / \sigma_w$ "
-                         r"(triangles)", fontsize=9)
+                         r"(triangles) of the seeds' mean stresses", fontsize=9)
+        bottom.legend(fontsize=7)
         bottom.set_ylim(0.0, 1.0)
         bottom.axhline(0.5, color="grey", lw=0.5, ls=":")
         for ax in (top, bottom):
