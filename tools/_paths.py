@@ -11,7 +11,7 @@ import sys
 # topic: the topics its modules may import (besides their own); tools never import bench
 LAYERS = {
     "deposit": (),                      # the runner, its report and checkpoints, remeasuring
-    "containers": ("deposit",),         # the oedometer
+    "containers": ("deposit",),         # the oedometer, the silo's wall stress
     "study": ("deposit",),              # the study's table, claims, verdicts, doc page
     "pores": ("deposit", "study"),      # the porous view and the flow solve
     "plot": ("deposit", "study"),       # the study's figures

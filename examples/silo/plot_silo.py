@@ -1,126 +1,169 @@
-"""Fit Janssen's law to silo.dat files of run_silo.py and plot them.
+"""The silo study's wall stress: Janssen fitted per run, K and the mobilised wall friction over
+seeds, the README's table and the figure.
 
-    ./ellipsoid-dep python examples/silo/plot_silo.py --R 2.5 --mu_w 0.5 \
-        --run "ellipsoids eta 1.4 zeta 1.8" DIR1 --run spheres DIR2 --figure silo.png
+    ./ellipsoid-dep python examples/silo/plot_silo.py [--table] [--figure silo.png]
 
-Janssen: sigma(H) = rho_b g lambda (1 - exp(-H / lambda)), lambda = R / (2 K mu_w), rho_b g
-the bulk weight density (the weight over pi R^2 H at the last stage). Two fits (scipy's
-curve_fit, standard errors from its covariance): Janssen's own, lambda alone with rho_b g
-measured; and a free amplitude, sigma = A (1 - exp(-H / lambda)), whose A / (rho_b g lambda)
-would be 1 if the data followed Janssen's form. K mu_w = R / (2 lambda) is the product the
-floor's stress measures; K = R / (2 lambda mu_w) assumes the wall friction fully mobilised (a
-lower bound otherwise). The rms residuals say how well each form fits.
+Reads the runs of silo_runs.py (results/R<R>/<shape>/seed<k>/: wall.dat, run.json). Per run
+(tools/containers/silo_wall.py), over the bins of the fit (FIT: at least FLOOR d above the
+floor and TOP d below the fill height H, depth h = H - z of the bin's middle):
+* Janssen's profile fitted to the wall's normal stress sigma_w(h): A, lambda, and from them
+  with the bulk weight density rho_b g = weight / (pi R^2 H) the mobilised friction
+  mu = rho_b g R / (2 A) and K = A / (rho_b g lambda);
+* the same read directly off the data: mu_mob = sum tau_w / sum sigma_w and
+  K = sum sigma_w / sum sigma_v, sigma_v the bulk's vertical stress from the force balance of
+  the particles above each bin's middle (the weight less the wall's support).
+Over the seeds: mean +- standard error (SD / sqrt(n)), n given.
 """
 import argparse
+import glob
+import json
 import math
 import os
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt    # noqa: E402
 import numpy as np                 # noqa: E402
-from scipy.optimize import curve_fit    # noqa: E402
+
+import silo_runs                   # noqa: E402
+import silo_wall                   # noqa: E402
+
+FLOOR, TOP = 1.0, 1.0
+LABELS = {"spheres": "spheres", "eta1.4_zeta1.8": "eta 1.4 zeta 1.8",
+          "eta2_zeta2": "eta 2 zeta 2"}
 
 
-def janssen(h, a, lam):
-    return a * (1.0 - np.exp(-h / lam))
+def load(folder):
+    """one run: its run.json with the wall table (columns of run_silo.WALL_COLUMNS)"""
+    run = json.load(open(os.path.join(folder, "run.json")))
+    names = open(os.path.join(folder, "wall.dat")).readline().lstrip("# ").split()
+    table = np.loadtxt(os.path.join(folder, "wall.dat"), ndmin=2)
+    run["wall"] = {name: table[:, k] for k, name in enumerate(names)}
+    return run
 
 
-def fit(path, radius, mu_w):
-    """path: a run folder (its silo.dat) or a silo.dat file"""
-    path = os.path.join(path, "silo.dat") if os.path.isdir(path) else path
-    if not os.path.isfile(path):
-        sys.exit(f"plot_silo.py: no {path} (run run_silo.py --out DIR first)")
-    data = np.loadtxt(path, ndmin=2)
-    h, sigma, weight = data[:, 2], data[:, 3], data[:, 6]
-    if len(h) < 3:
-        sys.exit(f"plot_silo.py: {path} has {len(h)} stages; the fit needs 3")
-    rho_g = weight[-1] / (math.pi * radius**2 * h[-1])
-    (lam1,), cov1 = curve_fit(lambda x, lam: janssen(x, rho_g * lam, lam), h, sigma,
-                              p0=(radius,))
-    dlam1 = math.sqrt(cov1[0, 0])
-    (a, lam), cov = curve_fit(janssen, h, sigma, p0=(rho_g * radius, radius))
-    da, dlam = np.sqrt(np.diag(cov))
-    k_mu = radius / (2.0 * lam1)
-    return dict(h=h, sigma=sigma, rho_g=rho_g, lam1=lam1, dlam1=dlam1, k_mu=k_mu,
-                dk_mu=k_mu * dlam1 / lam1, k=k_mu / mu_w, dk=k_mu / mu_w * dlam1 / lam1,
-                rms1=np.sqrt(np.mean((janssen(h, rho_g * lam1, lam1) - sigma) ** 2)),
-                a=a, da=da, lam=lam, dlam=dlam, k_mu_free=radius / (2.0 * lam),
-                rms=np.sqrt(np.mean((janssen(h, a, lam) - sigma) ** 2)),
-                check=a / (rho_g * lam), stages=len(h), side=data[-1, 5] / weight[-1])
+def analyse(run):
+    """the fit and the direct ratios of one run over the bins of the fit"""
+    w = run["wall"]
+    keep = (w["z_lo"] >= FLOOR) & (w["h"] >= TOP)
+    fit = silo_wall.fit_janssen(w["h"][keep], w["sigma_w"][keep], run["rho_g"], run["R"])
+    _, _, k_data, mu_data = silo_wall.profile_ratios(w["sigma_w"][keep], w["tau_w"][keep],
+                                                     w["sigma_v"][keep])
+    halves = {}
+    for name, part in (("upper", keep & (w["h"] < run["H"] / 2)),
+                       ("lower", keep & (w["h"] >= run["H"] / 2))):
+        _, _, halves["K_" + name], halves["mu_" + name] = silo_wall.profile_ratios(
+            w["sigma_w"][part], w["tau_w"][part], w["sigma_v"][part])
+    window = np.median(w["sd_sigma_w"][keep] / w["sigma_w"][keep])
+    return dict(fit, K_data=k_data, mu_data=mu_data, window=window, **halves,
+                side=run["side"] / run["weight"], bins=int(keep.sum()))
 
 
-SATURATED = 5    # the stages from this one on hold the saturated floor stress (H > 16 d)
+def runs(results=silo_runs.RESULTS):
+    """{(R, shape): [run, ...]} of the finished runs, silo_runs's order"""
+    out = {}
+    for radius in silo_runs.SILOS:
+        for shape in silo_runs.SHAPES:
+            found = sorted(glob.glob(os.path.join(results, "R%g" % radius, shape, "seed*",
+                                                  "run.json")))
+            if found:
+                out[(radius, shape)] = [load(os.path.dirname(path)) for path in found]
+    return out
 
 
-def table(fits, radius):
-    """the README's table (markdown rows) of fits {label: fit(...)}"""
-    rows = [("bulk rho_b g / (rho g), last stage (= packing fraction)",
-             lambda r: "%.3f" % r["rho_g"]),
-            ("saturated floor stress sigma_inf (stages %d-%d, mean +- SD)",
-             lambda r: "%.4f +- %.4f" % saturated(r)),
-            ("K mu_w = rho_b g R / (2 sigma_inf)",
-             lambda r: "%.3f" % (r["rho_g"] * radius / (2 * saturated(r)[0]))),
-            ("weight carried by the side at H = %s d",
-             lambda r: "%.0f %%" % (100 * r["side"])),
-            ("Janssen fit (lambda alone): lambda, K mu_w, rms residual",
-             lambda r: "%.1f +- %.1f d, %.3f, %.2f" % (r["lam1"], r["dlam1"], r["k_mu"],
-                                                       r["rms1"])),
-            ("free amplitude fit: lambda, A / (rho_b g lambda), rms",
-             lambda r: "%.1f +- %.1f d, %.2f, %.2f" % (r["lam"], r["dlam"], r["check"],
-                                                       r["rms"]))]
-    first = next(iter(fits.values()))
-    heights = "-".join("%.0f" % r["h"][-1] for r in fits.values())
-    lines = ["| | " + " | ".join(fits) + " |", "|---" * (len(fits) + 1) + "|"]
-    for label, value in rows:
-        label = label % ((SATURATED, first["stages"]) if "stages" in label else
-                         (heights,) if "%s" in label else ())
-        lines.append("| %s | %s |" % (label, " | ".join(value(r) for r in fits.values())))
+def summary(group):
+    """mean +- SE over the seeds of each quantity, and n"""
+    fits = [dict(analyse(r), rho_g=r["rho_g"], H=r["H"], N=r["N"],
+                 balance=abs(r["balance_mean"])) for r in group]
+    return {key: silo_wall.over_seeds([f[key] for f in fits]) for key in fits[0]}, len(fits)
+
+
+def pm(stat, digits):
+    mean, _, se = stat
+    return "%.*f" % (digits, mean) if math.isnan(se) else "%.*f +- %.*f" % (digits, mean,
+                                                                             digits, se)
+
+
+def table(groups):
+    """the README's table (markdown) of {(R, shape): [run, ...]}"""
+    lines = ["| R / d | shape | seeds | N | H / R | rho_b g | Janssen fit: K | mu | lambda / R "
+             "| rms / A | data: K = sigma_w / sigma_v | mu_mob = tau_w / sigma_w "
+             "| upper half: K, mu_mob | lower half: K, mu_mob | side's share of the weight |",
+             "|---" * 15 + "|"]
+    for (radius, shape), group in groups.items():
+        s, n = summary(group)
+        lam_r = (s["lambda"][0] / radius, math.nan, s["lambda"][2] / radius)
+        rms = (s["rms"][0] / s["A"][0], math.nan, math.nan)
+        lines.append("| %g | %s | %d | %.0f | %.1f | %s | %s | %s | %s | %.3f | %s | %s "
+                     "| %s, %s | %s, %s | %s |" % (
+                         radius, LABELS[shape], n, s["N"][0], s["H"][0] / radius,
+                         pm(s["rho_g"], 3), pm(s["K"], 2), pm(s["mu"], 3), pm(lam_r, 2), rms[0],
+                         pm(s["K_data"], 3), pm(s["mu_data"], 3), pm(s["K_upper"], 2),
+                         pm(s["mu_upper"], 2), pm(s["K_lower"], 2), pm(s["mu_lower"], 2),
+                         pm(s["side"], 3)))
     return "\n".join(lines)
 
 
-def saturated(r):
-    """mean and sample SD of the floor stress over the saturated stages"""
-    tail = r["sigma"][SATURATED - 1:]
-    return float(np.mean(tail)), float(np.std(tail, ddof=1))
+def seed_mean(group):
+    """the seeds' mean wall table over the bins all have (the same z bins from the floor)"""
+    n = min(len(run["wall"]["h"]) for run in group)
+    return {key: np.mean([run["wall"][key][:n] for run in group], axis=0)
+            for key in ("h", "sigma_w", "tau_w", "sigma_v")}
+
+
+def figure(groups, path):
+    radii = list(silo_runs.SILOS)
+    fig, axes = plt.subplots(2, len(radii), figsize=(5 * len(radii), 7.5), squeeze=False)
+    for col, radius in enumerate(radii):
+        top, bottom = axes[0, col], axes[1, col]
+        for (r, shape), colour in zip([k for k in groups if k[0] == radius], ("C0", "C1", "C2")):
+            s, n = summary(groups[(r, shape)])
+            for run in groups[(r, shape)]:
+                w = run["wall"]
+                top.plot(w["h"], w["sigma_w"], "o", ms=3, color=colour, alpha=0.6)
+                top.plot(w["h"], w["tau_w"], "^", ms=3, mfc="none", color=colour, alpha=0.6)
+                top.plot(w["h"], w["sigma_v"], ":", lw=0.8, color=colour)
+            m = seed_mean(groups[(r, shape)])
+            k, mob, _, _ = silo_wall.profile_ratios(m["sigma_w"], m["tau_w"], m["sigma_v"])
+            bottom.plot(m["h"], k, "o-", ms=3, color=colour, label=LABELS[shape])
+            bottom.plot(m["h"], mob, "^--", ms=3, mfc="none", color=colour)
+            hh = np.linspace(0.0, max(run["H"] for run in groups[(r, shape)]), 100)
+            top.plot(hh, silo_wall.janssen(hh, s["A"][0], s["lambda"][0]), "-", color=colour,
+                     label="%s (%d seeds): K %.2f, $\\mu$ %.2f" % (LABELS[shape], n, s["K"][0],
+                                                                   s["mu"][0]))
+        top.set_title("R = %g d: wall stress (o normal, triangles shear), Janssen fit\n"
+                      "(lines), the bulk's vertical stress (dotted); each seed" % radius,
+                      fontsize=9)
+        top.set_ylabel(r"stress / ($\rho g d$)")
+        top.legend(fontsize=7)
+        bottom.set_title(r"K = $\sigma_w / \sigma_v$ (o), $\mu_{mob} = \tau_w / \sigma_w$ "
+                         r"(triangles) of the seeds' mean stresses", fontsize=9)
+        bottom.legend(fontsize=7)
+        bottom.set_ylim(0.0, 1.0)
+        bottom.axhline(0.5, color="grey", lw=0.5, ls=":")
+        for ax in (top, bottom):
+            ax.set_xlabel("depth h / d below the fill height")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--R", type=float, required=True)
-    p.add_argument("--mu_w", type=float, required=True)
-    p.add_argument("--run", nargs=2, action="append", metavar=("LABEL", "DIR"), required=True)
-    p.add_argument("--figure", required=True)
-    p.add_argument("--table", action="store_true",
-                   help="also print the README's table of the runs (markdown)")
+    p.add_argument("--table", action="store_true", help="print the README's table")
+    p.add_argument("--figure", help="write the figure here (e.g. examples/silo/silo.png)")
     a = p.parse_args()
+    groups = runs()
+    if not groups:
+        p.error("no finished runs in %s (run silo_runs.py first)" % silo_runs.RESULTS)
+    for (radius, shape), group in groups.items():
+        s, n = summary(group)
+        print("R %g %s: %d seeds; " % (radius, LABELS[shape], n) +
+              ", ".join("%s %s" % (k, pm(v, 4)) for k, v in s.items()), flush=True)
     if a.table:
-        print(table({label: fit(path, a.R, a.mu_w) for label, path in a.run}, a.R))
-    fig, ax = plt.subplots(figsize=(5.5, 4))
-    for (label, path), colour in zip(a.run, ("C0", "C1", "C2", "C3")):
-        r = fit(path, a.R, a.mu_w)
-        print(f"{label}: rho_b g {r['rho_g']:.4f}; Janssen: lambda {r['lam1']:.2f} +- "
-              f"{r['dlam1']:.2f} d, K mu_w {r['k_mu']:.3f} +- {r['dk_mu']:.3f}, K (mu_w "
-              f"{a.mu_w} mobilised) {r['k']:.2f} +- {r['dk']:.2f}, rms {r['rms1']:.3f}; free "
-              f"amplitude: A {r['a']:.3f} +- {r['da']:.3f}, lambda {r['lam']:.2f} +- "
-              f"{r['dlam']:.2f} d, K mu_w {r['k_mu_free']:.3f}, A / (rho_b g lambda) "
-              f"{r['check']:.2f}, rms {r['rms']:.3f}")
-        ax.plot(r["h"], r["sigma"], "o", color=colour, label=label)
-        hh = np.linspace(0.0, r["h"].max() * 1.05, 200)
-        ax.plot(hh, janssen(hh, r["rho_g"] * r["lam1"], r["lam1"]), "-", color=colour,
-                label=f"Janssen, $\\lambda$ = {r['lam1']:.1f} d, K$\\mu_w$ = {r['k_mu']:.2f}")
-        ax.plot(hh, janssen(hh, r["a"], r["lam"]), "--", color=colour, lw=1,
-                label=f"free amplitude, $\\lambda$ = {r['lam']:.1f} d")
-        ax.plot(hh, r["rho_g"] * hh, ":", color=colour, lw=1)
-    ax.set_xlabel("fill height H / d")
-    ax.set_ylabel(r"floor stress $\sigma_{zz}$ / ($\rho g d$)")
-    ax.set_title(f"silo R = {a.R} d, wall friction {a.mu_w} (dotted: hydrostatic)", fontsize=9)
-    ax.set_ylim(bottom=0.0)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(a.figure, dpi=150)
+        print(table(groups))
+    if a.figure:
+        figure(groups, a.figure)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 """The examples' READMEs say what runs today: their numbers are generated or checked here.
 
 * examples/smoke: the styles `plugin list` (in.smoke) prints are the README's list.
-* examples/silo: the README's table is plot_silo.py's table of the committed results/*.dat.
+* examples/silo: the README's table is plot_silo.py's table of the committed results/ (the
+  runs' wall tables).
 * examples/deposit: the depth numbers (mean particle volume, number-mean diameter, the depth
   at the quoted phi, the smallest N of the default shape) are tools/deposit/deposit_depth.py's.
 * Every example input that includes in.deposit, and every `./ellipsoid-dep run` command in a
@@ -46,13 +47,9 @@ def test_smoke_lists_the_loaded_styles(tmp_path):
 def test_silo_table_is_the_committed_data():
     import plot_silo
     text = readme("silo")
-    start = text.index("| | ellipsoids")
+    start = text.index("| R / d | shape")
     committed = text[start:text.index("\n\n", start)]
-    results = os.path.join(ROOT, "examples", "silo", "results")
-    fits = {"ellipsoids eta 1.4 zeta 1.8":
-            plot_silo.fit(os.path.join(results, "ellipsoids_eta1.4_zeta1.8.dat"), 2.5, 0.5),
-            "spheres": plot_silo.fit(os.path.join(results, "spheres.dat"), 2.5, 0.5)}
-    assert committed == plot_silo.table(fits, 2.5), \
+    assert committed == plot_silo.table(plot_silo.runs()), \
         "examples/silo/README.md's table differs from its data: print it with plot_silo.py --table"
 
 
