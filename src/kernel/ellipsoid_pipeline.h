@@ -127,7 +127,7 @@ inline bool reject_apart(const BoundingTest &t, double *cache, PipelineCounters 
   if (!t.apart) return false;
   ++counters.pairs;
   ++counters.bounding_rejects;
-  PairHistory(cache).clear();
+  PairHistory(cache).forget();
   return true;
 }
 
