@@ -329,7 +329,8 @@ TEST(ForceLaws, HistoryTangentialDashpot)
 TEST(ForceLaws, HistoryTangentialWithoutFrictionIsTangentialNone)
 {
   const ForceLaw none = parsed("hertz 1e5 20");
-  for (const char *line : {"hertz 1e5 20 tangential history 1e4 0", "hertz 1e5 20 tangential history 1e4 0 xt 0.5"}) {
+  for (const char *line :
+       {"hertz 1e5 20 tangential history 1e4 0", "hertz 1e5 20 tangential history 1e4 0 xt 0.5"}) {
     SCOPED_TRACE(line);
     const ForceLaw frictionless = parsed(line);
     ASSERT_EQ(frictionless.history_size(), 3);
