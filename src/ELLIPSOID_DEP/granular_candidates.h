@@ -76,10 +76,12 @@ class Candidates {
 inline bool forget_if_apart(const EllipsoidDep::BoundingTest &t, double *history, int &touch,
                             int law_slots, EllipsoidDep::PipelineCounters &counters)
 {
-  if (!EllipsoidDep::reject_apart(t, history, counters)) return false;
+  if (!t.apart) return false;
+  // a row not in use holds zeros, the law's slots included (PairHistory::forget())
+  EllipsoidDep::PairHistory row(history);
+  if (row.in_use()) row.clear_law<EllipsoidDep::ForceLaw::MAX_HISTORY_SIZE>(law_slots);
+  EllipsoidDep::reject_apart(t, history, counters);
   touch = 0;
-  EllipsoidDep::PairHistory(history).clear_law<EllipsoidDep::ForceLaw::MAX_HISTORY_SIZE>(
-      law_slots);
   return true;
 }
 

@@ -146,13 +146,15 @@ void PairGranularEllipsoid::compute(int eflag, int vflag)
       const BoundingTest bounds = bounding_test(state[i].shape, state[j].shape);
       if (forget_if_apart(bounds, history, touch[jj], law_slots, counters)) continue;
 
+      PairHistory row(history);
+      // the law's slots hold values only after a contact (zeros otherwise)
+      const bool had_contact = row.state() == PairHistory::State::Contact;
       const ContactGeometry geometry =
           evaluate_near_pair(state[i].shape, state[j].shape, bounds, pipeline, history, counters);
       // keep the history of this pair while it caches a plane or a contact normal
-      PairHistory row(history);
       touch[jj] = row.in_use() ? 1 : 0;
       if (!in_contact(geometry)) {
-        row.clear_law<ForceLaw::MAX_HISTORY_SIZE>(law_slots);
+        if (had_contact) row.clear_law<ForceLaw::MAX_HISTORY_SIZE>(law_slots);
         continue;
       }
 

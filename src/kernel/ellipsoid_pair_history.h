@@ -24,7 +24,10 @@
    which evaluate_pair only clears, with the pipeline's, when a row is not the pair's. Slot 4
    belongs to the plane or to the contact, as the state says. An engine keeps rows of one size
    for all pairs, size(the largest history of its laws); a pair of a law that keeps less
-   leaves the rest of its law slots at zero.
+   leaves the rest of its law slots at zero. A row holds non-zero values only while in use:
+   every change of the state to empty clears the pipeline's slots, and the law's hold values
+   only after a contact (an engine clears them when its pair leaves contact), so forgetting
+   a row not in use writes nothing (forget()).
 
    The i/j swap rule, for every slot of the pipeline and of the laws: its value changes sign
    when A and B are swapped (the state by convention, n -> -n, u -> -u, step -> -step,
@@ -157,6 +160,13 @@ class PairHistory {
   void clear()
   {
     for (int k = 0; k < PIPELINE_SIZE; ++k) v[k] = 0.0;
+  }
+  // clear() for a row that may be empty, which holds zeros already (of either sign after
+  // swapped(); an empty row's slots are not read): the bounding rejects, most evaluations of
+  // a dilute scene, leave their rows unwritten
+  void forget()
+  {
+    if (in_use()) clear();
   }
   // forget everything: a row made for another pair or image, with law_size slots of the law
   void clear_row(int law_size)

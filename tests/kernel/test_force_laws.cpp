@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -320,6 +321,36 @@ TEST(ForceLaws, HistoryTangentialDashpot)
   const Vec3 expected_m = -1e3 * slow * dt - 2 * gamma_m * slow;
   EXPECT_LT((Vec3(f.force_i.x(), f.force_i.y(), 0) - expected_m).norm(),
             1e-12 * expected_m.norm());
+}
+
+// mu 0: the Coulomb limit cancels the spring and the dashpot at any displacement, so the law is
+// frictionless: the forces and torques of tangential none bit for bit, and its displacement is
+// neither computed nor written (the pair skips that work; the slots stay as they were)
+TEST(ForceLaws, HistoryTangentialWithoutFrictionIsTangentialNone)
+{
+  const ForceLaw none = parsed("hertz 1e5 20");
+  for (const char *line :
+       {"hertz 1e5 20 tangential history 1e4 0", "hertz 1e5 20 tangential history 1e4 0 xt 0.5"}) {
+    SCOPED_TRACE(line);
+    const ForceLaw frictionless = parsed(line);
+    ASSERT_EQ(frictionless.history_size(), 3);
+    for (int step = 0; step < 20; ++step) {
+      ContactGeometry g = geometry();
+      g.normal = Vec3(std::sin(0.3 * step), 0.2, std::cos(0.3 * step)).normalized();
+      ContactMotion m = motion(Vec3(0.3 - 0.05 * step, 0.7, -0.2));
+      m.omega_i = Vec3(0.1 * step, -0.4, 0.25);
+      double slots[3] = {0.0, 0.0, 0.0};
+      const ContactForce a = frictionless.compute(g, m, 1e-3, slots);
+      const ContactForce b = none.compute(g, m, 1e-3, nullptr);
+      for (int d = 0; d < 3; ++d) {
+        EXPECT_EQ(std::memcmp(&a.force_i[d], &b.force_i[d], sizeof(double)), 0) << d;
+        EXPECT_EQ(std::memcmp(&a.torque_i[d], &b.torque_i[d], sizeof(double)), 0) << d;
+        EXPECT_EQ(std::memcmp(&a.torque_j[d], &b.torque_j[d], sizeof(double)), 0) << d;
+        const double zero = 0.0;
+        EXPECT_EQ(std::memcmp(&slots[d], &zero, sizeof(double)), 0) << "slot " << d;
+      }
+    }
+  }
 }
 
 TEST(ForceLaws, ConstantRollingTorque)

@@ -460,6 +460,29 @@ TEST(Pipeline, CachedPlaneAndSwap)
   }
 }
 
+// A bounding reject clears a row in use (plane or contact) and writes nothing to an empty one,
+// whose slots are zeros already (the sign of a zero after swapped() included: nothing reads
+// them); its counters are those of any reject
+TEST(Pipeline, BoundingRejectWritesOnlyARowInUse)
+{
+  const Ellipsoid a = make_ellipsoid(Vec3::Zero(), Mat3::Identity(), Vec3(1.0, 0.7, 0.4));
+  const Ellipsoid far = make_ellipsoid(Vec3(10, 0, 0), Mat3::Identity(), Vec3(1.0, 0.7, 0.4));
+  PipelineSettings ps;
+  PipelineCounters cnt;
+  double empty[PairHistory::PIPELINE_SIZE];
+  for (double &v : empty) v = -0.0;
+  auto g = evaluate_pair(a, far, ps, empty, cnt);
+  EXPECT_EQ(g.status, Status::Separated);
+  for (double v : empty) EXPECT_TRUE(std::signbit(v) && v == 0.0);    // not written
+  double used[PairHistory::PIPELINE_SIZE] = {};
+  PairHistory(used).store_contact(Vec3(1, 0, 0), Vec3(1.5, 0, 0), Vec3(0.01, 0, 0));
+  g = evaluate_pair(a, far, ps, used, cnt);
+  EXPECT_EQ(g.status, Status::Separated);
+  for (double v : used) EXPECT_TRUE(!std::signbit(v) && v == 0.0);    // cleared
+  EXPECT_EQ(cnt.pairs, 2);
+  EXPECT_EQ(cnt.bounding_rejects, 2);
+}
+
 // ---------------------------------------------------------------------------
 TEST(Settings, FastModeAndIterationCap)
 {

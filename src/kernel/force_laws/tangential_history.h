@@ -46,6 +46,9 @@ struct HistoryTangential {
   void add_force(const Vec3 &n, const Vec3 &v_tangent, double fn_friction, double normal_damping,
                  double dt, double *history, Vec3 &force) const
   {
+    // mu 0: the Coulomb limit cancels the whole tangential force, spring and dashpot, at any
+    // displacement: a frictionless contact, whose displacement nothing reads (left at zero)
+    if (mu == 0.0) return;
     Eigen::Map<Vec3> shear(history + DISPLACEMENT);
     // keep the stored displacement on the current tangent plane, at its length, as the
     // contact normal turns
