@@ -1,9 +1,14 @@
-"""The flow solve's default (tools/pores/pore_flow_domain.py, tools/pores/pore_flow_fit.py): several voxels
-extrapolated to a vanishing voxel, a box cut out of a wider slab, and the progress lines.
+"""The flow solve's default (tools/pores/pore_flow_domain.py, tools/pores/pore_flow_fit.py): several voxels,
+each the mean over offsets of the grid, extrapolated to a vanishing voxel, a box cut out of a
+wider slab, and the progress lines.
 
 - the fit k = k0 + C h^p: p and k0 recovered from three exact values, the fixed-p least
-  squares with its standard error, non-monotone values (no fitted p); the plane slit, whose
-  discrete k is exactly of that form, extrapolated to Poiseuille's k;
+  squares with its standard error, non-monotone values (no fitted p), the values' own errors
+  carried into k0's; the plane slit, whose discrete k is exactly of that form, extrapolated
+  to Poiseuille's k;
+- the grid's offsets: an offset moves the voxels against the particles; on a touching lattice
+  (each offset's k differs) a voxel's k is the mean of all offsets, and the same for the
+  lattice moved by half a voxel;
 - a cut box whose faces are mirror planes of a simple cubic lattice: mirrored along the flow
   and symmetry planes across it, it is the periodic lattice (k of the periodic cell);
 - the progress lines name the resolution, the direction, the iteration and the residual.

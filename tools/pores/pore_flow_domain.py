@@ -24,7 +24,7 @@ FLOW_VOXEL_FRACTIONS = (1.0 / 6.5, 0.125, 0.1)
 MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thinnest particle
 # each voxel's k is the mean over offsets of the grid (fractions of a voxel in x and y; the
 # first: the grid on the domain's corner): a lattice's k at one voxel changes with where its
-# contacts fall between the voxel centres by up to +-30 % (howto, "Voxels and the
+# contacts fall between the voxel centres by up to 55 % (howto, "Voxels, offsets and the
 # extrapolation"), the mean far less. Two offsets, and all FLOW_OFFSET_COUNT of them unless
 # the two agree: each direction's standard error of the mean within OFFSET_PRECISION of it.
 OFFSETS = ((0.0, 0.0), (0.5, 0.5), (0.0, 0.5), (0.5, 0.0))
