@@ -142,11 +142,13 @@ def test_tool_flow_on_the_cubic_lattice(tmp_path):
     periodic unit cell at the same voxels; the symmetry planes for x and y are OpenFOAM's
     symmetryPlane patches, whose discretisation is not the exact mirror: measured -9.0e-4
     (k_xx = k_yy by the lattice's symmetry); in d^2 (d = 1). The box is narrower than the
-    default cut box: the flow domain is the slab."""
+    default cut box: the flow domain is the slab. One offset: the grid on the slab's corner, as
+    the cell's."""
     folder = str(tmp_path / "lattice")
     cubic_lattice_folder(folder)
     n = 8
-    pores.main([folder, "--flow", "--flow-voxel", str(1.0 / n), "--quiet"])
+    pores.main([folder, "--flow", "--flow-voxel", str(1.0 / n), "--flow-offsets", "1",
+                "--quiet"])
     with open(os.path.join(folder, "pores.json")) as f:
         k = json.load(f)["permeability_flow"]
     assert k["units"] == "d^2" and k["d"] == pytest.approx(1.0)
@@ -193,6 +195,8 @@ def test_bad_input(tmp_path, capsys):
     assert code == 2 and "--flow-box -1: needs L >= 0" in err
     code, err = run_tool([lattice, "--quiet", "--flow", "--flow-box-at", "1"], capsys)
     assert code == 2 and "--flow-box-at 1: needs X,Y" in err
+    code, err = run_tool([lattice, "--quiet", "--flow", "--flow-offsets", "3"], capsys)
+    assert code == 2 and "--flow-offsets 3: needs 1, 2 or 4" in err
     # a closed layer: overlapping spheres of radius 0.75 on the lattice at z = 4
     closed = str(tmp_path / "closed")
     centres = [(i + 0.5, j + 0.5, k + 0.5) for i in range(2) for j in range(2) for k in range(8)]

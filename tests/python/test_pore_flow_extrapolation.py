@@ -1,9 +1,14 @@
-"""The flow solve's default (tools/pores/pore_flow_domain.py, tools/pores/pore_flow_fit.py): several voxels
-extrapolated to a vanishing voxel, a box cut out of a wider slab, and the progress lines.
+"""The flow solve's default (tools/pores/pore_flow_domain.py, tools/pores/pore_flow_fit.py): several voxels,
+each the mean over offsets of the grid, extrapolated to a vanishing voxel, a box cut out of a
+wider slab, and the progress lines.
 
 - the fit k = k0 + C h^p: p and k0 recovered from three exact values, the fixed-p least
-  squares with its standard error, non-monotone values (no fitted p); the plane slit, whose
-  discrete k is exactly of that form, extrapolated to Poiseuille's k;
+  squares with its standard error, non-monotone values (no fitted p), the values' own errors
+  carried into k0's; the plane slit, whose discrete k is exactly of that form, extrapolated
+  to Poiseuille's k;
+- the grid's offsets: an offset moves the voxels against the particles; on a touching lattice
+  (each offset's k differs) a voxel's k is the mean of all offsets, and the same for the
+  lattice moved by half a voxel;
 - a cut box whose faces are mirror planes of a simple cubic lattice: mirrored along the flow
   and symmetry planes across it, it is the periodic lattice (k of the periodic cell);
 - the progress lines name the resolution, the direction, the iteration and the residual.
@@ -59,6 +64,27 @@ def test_extrapolation_of_values_that_do_not_converge_monotonically():
         extrapolate(h[:2], k[:2])
 
 
+def test_offset_errors_propagate_to_k0():
+    """the values' own standard errors (a mean over the grid's offsets) reach k0 through the
+    fixed-p least squares, which is linear in the values: sqrt(sum (dk0/dk_i sigma_i)^2) from
+    finite differences, added to the error"""
+    h = [1 / 13, 1 / 16, 1 / 20]
+    k = [1.2, 1.1, 1.05]
+    sigma = [0.03, 0.02, 0.01]
+    plain = extrapolate(h, k)
+    e = extrapolate(h, k, sigma)
+    slopes = []
+    for i in range(3):
+        bumped = list(k)
+        bumped[i] += 1e-6
+        slopes.append((extrapolate(h, bumped)["k0_fixed_p"] - plain["k0_fixed_p"]) / 1e-6)
+    want = math.sqrt(sum((a * s) ** 2 for a, s in zip(slopes, sigma)))
+    assert plain["offset_error"] == 0.0
+    assert e["offset_error"] == pytest.approx(want, rel=1e-5)
+    assert e["error"] == pytest.approx(plain["error"] + want, rel=1e-9)
+    assert e["k0"] == plain["k0"] and e["k_offset_errors"] == sigma
+
+
 def test_slit_extrapolates_to_poiseuille():
     """a slit of width H between walls at n = 6, 8, 12 cells: the finite-volume k is exactly
     (H^2 / 12)(1 + 2 / n^2), k0 + C h^2, so the extrapolation recovers p = 2 and Poiseuille's
@@ -98,7 +124,8 @@ def test_cut_box_of_a_lattice_is_the_periodic_lattice():
     p, box = lattice(4, 8, radius=0.4)
     n = 8
     h = 1.0 / n
-    k = pore_flow_domain.flow_permeability(p, box, 2.0, 6.0, [h], side=2.0 / 0.8)
+    k = pore_flow_domain.flow_permeability(p, box, 2.0, 6.0, [h], side=2.0 / 0.8,
+                                           offset_count=1)
     assert k["domain"]["kind"] == "box"
     assert k["domain"]["x"] == pytest.approx([1.0, 3.0], abs=1e-12)
     assert k["domain"]["z"] == pytest.approx([3.0, 5.0], abs=1e-12)
@@ -119,6 +146,55 @@ def test_cut_box_of_a_lattice_is_the_periodic_lattice():
     inner = pore_flow_domain.flow_domain(box, 2.0, 6.0, d, 2.5, at=(1.5, 1.5))
     same, _, _ = pore_flow_domain.flow_image(p, box, inner, h, lambda m: None)
     assert np.array_equal(solid, same) and filled == 0.0
+
+
+def touching_lattice(shift):
+    """unit spheres touching on a simple cubic lattice, 2 x 2 cells wide (narrower than the
+    default box: the flow domain is the whole periodic slab), moved by shift in x and y"""
+    c = np.array([[i + 0.5 + shift, j + 0.5 + shift, k + 0.5]
+                  for i in range(2) for j in range(2) for k in range(5)])
+    p = pores.Particles(c, np.tile([1.0, 0, 0, 0], (len(c), 1)), np.full((len(c), 3), 0.5))
+    return p, np.array([[0, 2], [0, 2], [0, 5]], dtype=float)
+
+
+def test_grid_offsets_move_the_voxels_against_the_particles():
+    """the flow image at the offset (1/2, 1/2) of a voxel is the image of the lattice moved by
+    -1/2 voxel at no offset; and it differs from the image at no offset: the lattice's
+    contacts fall on voxel centres there (open between them) and on voxel faces here"""
+    h = 1.0 / 6
+    p, box = touching_lattice(0.0)
+    domain = pore_flow_domain.flow_domain(box, 2.0, 3.0, 1.0)
+    assert domain.describe(1.0)["kind"] == "slab"
+    half, _, _ = pore_flow_domain.flow_image(p, box, domain, h, lambda m: None, (0.5, 0.5))
+    q, _ = touching_lattice(-0.5 * h)
+    moved, _, _ = pore_flow_domain.flow_image(q, box, domain, h, lambda m: None)
+    corner, _, _ = pore_flow_domain.flow_image(p, box, domain, h, lambda m: None)
+    assert np.array_equal(half, moved)
+    assert not np.array_equal(half, corner)
+    assert pore_flow_domain.grid_offsets(2) == pore_flow_domain.OFFSETS[:2]
+    with pytest.raises(ValueError, match="--flow-offsets 3: needs 1, 2 or 4"):
+        pore_flow_domain.grid_offsets(3)
+
+
+def test_a_voxel_is_the_mean_over_the_grid_offsets():
+    """at one coarse voxel (d/6, k_xx only) on the touching lattice each offset's k differs by
+    a factor of up to 2.5 (the contacts open or closed), so all 4 offsets are solved; the
+    voxel's k is their mean with its standard error; and the lattice moved by half a voxel
+    gives the same mean (the offsets are a set closed under that move)"""
+    h = 1.0 / 6
+    means = []
+    for shift in (0.0, 0.5 * h):
+        p, box = touching_lattice(shift)
+        k = pore_flow_domain.flow_permeability(p, box, 2.0, 3.0, [h], directions=("xx",))
+        (r,) = k["resolutions"]
+        each = [s["xx"] for s in r["offsets"]]
+        assert [s["offset"] for s in r["offsets"]] == [list(o) for o in
+                                                        pore_flow_domain.OFFSETS]
+        assert max(each) > 1.5 * min(each)
+        assert r["xx"] == pytest.approx(np.mean(each), rel=1e-12) == k["xx"]
+        assert r["xx_offset_error"] == pytest.approx(np.std(each, ddof=1) / 2, rel=1e-9)
+        means.append(r["xx"])
+    assert means[1] == pytest.approx(means[0], rel=1e-5)
 
 
 def test_progress_names_resolution_direction_iteration_and_residual(monkeypatch):

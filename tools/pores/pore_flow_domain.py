@@ -17,10 +17,19 @@ import pore_flow
 from pore_flow_fit import extrapolate
 from pore_voxels import Grid, check_memory, periodic_labels, voxelize
 
-# the default voxels, fractions of the smallest semi-axis: d/10, d/13, d/16 for spheres (a
-# geometric progression; d/8 is too coarse for the contacts, finer costs too much: howto)
-FLOW_VOXEL_FRACTIONS = (0.2, 1.0 / 6.5, 0.125)
+# the default voxels, fractions of the smallest semi-axis: d/13, d/16, d/20 for spheres (a
+# geometric progression; at d/10 a lattice's contacts are still 12 to 18 % off after the
+# offsets' mean, finer costs too much: howto)
+FLOW_VOXEL_FRACTIONS = (1.0 / 6.5, 0.125, 0.1)
 MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thinnest particle
+# each voxel's k is the mean over offsets of the grid (fractions of a voxel in x and y; the
+# first: the grid on the domain's corner): a lattice's k at one voxel changes with where its
+# contacts fall between the voxel centres by up to 55 % (howto, "Voxels, offsets and the
+# extrapolation"), the mean far less. Two offsets, and all FLOW_OFFSET_COUNT of them unless
+# the two agree: each direction's standard error of the mean within OFFSET_PRECISION of it.
+OFFSETS = ((0.0, 0.0), (0.5, 0.5), (0.0, 0.5), (0.5, 0.0))
+FLOW_OFFSET_COUNT = 4
+OFFSET_PRECISION = 0.01
 FLOW_BOX = 5.0    # side of the cut box in d (the slab itself when the deposit is not wider)
 # the flow's voxel image and its labels, before OpenFOAM's mesh (a lower bound of its memory)
 FLOW_IMAGE_BYTES = 16
@@ -37,6 +46,11 @@ class Domain:
     def __init__(self, x, y, z, periodic_xy):
         self.ranges = (tuple(map(float, x)), tuple(map(float, y)), tuple(map(float, z)))
         self.periodic = tuple(periodic_xy) + (False,)
+
+    def shifted(self, dx, dy):
+        """the same domain moved by (dx, dy) horizontally"""
+        (x0, x1), (y0, y1), z = self.ranges
+        return Domain((x0 + dx, x1 + dx), (y0 + dy, y1 + dy), z, self.periodic[:2])
 
     def describe(self, d):
         sides = [r[1] - r[0] for r in self.ranges]
@@ -96,10 +110,14 @@ def domain_grid(box, domain, voxel):
     return grid
 
 
-def flow_image(particles, box, domain, voxel, progress):
-    """the domain's voxel image at voxel (pore voxels off the largest pore cluster joining the
-    bottom to the top filled) -> (solid, spacing, filled fraction of the pore voxels)"""
+def flow_image(particles, box, domain, voxel, progress, offset=(0.0, 0.0)):
+    """the domain's voxel image at voxel, its grid moved by offset (fractions of a voxel in x
+    and y; pore voxels off the largest pore cluster joining the bottom to the top filled)
+    -> (solid, spacing, filled fraction of the pore voxels)"""
     grid = domain_grid(box, domain, voxel)
+    if any(offset):
+        domain = domain.shifted(offset[0] * grid.hx, offset[1] * grid.hy)
+        grid = domain_grid(box, domain, voxel)
     if all(domain.periodic[:2]):
         solid = voxelize(particles, grid, progress)
     else:
@@ -120,6 +138,13 @@ def flow_image(particles, box, domain, voxel, progress):
     return ~connected, grid.spacing, filled
 
 
+def grid_offsets(count):
+    """at most the first count of OFFSETS; a ValueError for another count"""
+    if count not in (1, 2, 4):
+        raise ValueError("--flow-offsets %s: needs 1, 2 or 4" % count)
+    return OFFSETS[:count]
+
+
 def check_voxels(voxels, smallest):
     for voxel in voxels:
         if not 0 < voxel <= MAX_FLOW_VOXEL_FRACTION * smallest:
@@ -128,16 +153,63 @@ def check_voxels(voxels, smallest):
                                          MAX_FLOW_VOXEL_FRACTION * smallest))
 
 
+def resolution(particles, box, domain, voxel, d, offsets, directions, progress, workdir):
+    """k / d^2 at one voxel: the mean over the grid's offsets (the first two, the others
+    while they disagree), its standard error, and each offset's solve"""
+    solves = []
+    for n, offset in enumerate(offsets):
+        if n >= 2 and all(standard_error([s[key] for s in solves])
+                          <= OFFSET_PRECISION * np.mean([s[key] for s in solves])
+                          for key in directions):
+            break
+        solid, spacing, filled = flow_image(particles, box, domain, voxel, progress, offset)
+        label = "d/%.3g" % (d / voxel) + (" offset %d" % (n + 1) if len(offsets) > 1 else "")
+        k = pore_flow.permeability(solid, spacing, directions, progress, workdir,
+                                   domain.periodic, label=label)
+        s = {key: k[key] / d ** 2 for key in directions}
+        s.update({"offset": list(map(float, offset)), "porosity_voxel": float(1 - solid.mean()),
+                  "filled_pore_fraction": filled})
+        for key in ("cells", "iterations", "residuals", "seconds", "solver_cpu_seconds",
+                    "ranks"):
+            s[key] = k[key]
+        s["anisotropy_xx_zz"] = anisotropy(s)
+        solves.append(s)
+    r = {"voxel": voxel, "voxels_per_d": d / voxel, "image_xyz": k["image_xyz"],
+         "offsets": solves}
+    for key in list(directions) + ["porosity_voxel", "filled_pore_fraction"]:
+        r[key] = float(np.mean([s[key] for s in solves]))
+    for key in directions:
+        r[key + "_offset_error"] = standard_error([s[key] for s in solves])
+    r["anisotropy_xx_zz"] = anisotropy(r)
+    r["cells"] = solves[0]["cells"]    # the others differ by the voxels an offset moves
+    r["ranks"] = solves[0]["ranks"]
+    r["iterations"] = {key: max(s["iterations"][key] for s in solves) for key in directions}
+    r["residuals"] = {key: {c: max(s["residuals"][key][c] for s in solves)
+                            for c in solves[0]["residuals"][key]} for key in directions}
+    for key in ("seconds", "solver_cpu_seconds"):
+        r[key] = {k: sum(s[key][k] for s in solves) for k in directions}
+    return r
+
+
+def standard_error(values):
+    """of the mean of values (0 for one value)"""
+    n = len(values)
+    return float(np.std(values, ddof=1) / np.sqrt(n)) if n > 1 else 0.0
+
+
 def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, workdir=None,
-                      directions=("xx", "yy", "zz"), side=FLOW_BOX, at=None):
+                      directions=("xx", "yy", "zz"), side=FLOW_BOX, at=None,
+                      offset_count=FLOW_OFFSET_COUNT):
     """k along directions in units of d^2: at each voxel (default FLOW_VOXEL_FRACTIONS of the
-    smallest semi-axis), and with three or more voxels extrapolated to a vanishing voxel"""
+    smallest semi-axis) the mean over the grid's offsets (fractions of a voxel in x and y),
+    and with three or more voxels extrapolated to a vanishing voxel"""
     progress = progress or (lambda msg: None)
     smallest = float(particles.semi.min())
     if voxels is None:
         voxels = [f * smallest for f in FLOW_VOXEL_FRACTIONS]
     voxels = sorted(map(float, voxels), reverse=True)    # the coarsest, quickest first
     check_voxels(voxels, smallest)
+    offsets = grid_offsets(offset_count)
     d = volume_diameter(particles)
     domain = flow_domain(box, zlo, zhi, d, side, at)
     for voxel in voxels:    # before any solve: the finest may not fit
@@ -146,25 +218,15 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
     progress("flow domain: %s, %s d; voxels d/%s" % (
         domain.describe(d)["kind"], " x ".join("%.3g" % s for s in domain.describe(d)["sides_d"]),
         ", d/".join("%.3g" % (d / v) for v in voxels)))
-    resolutions = []
-    for voxel in voxels:
-        solid, spacing, filled = flow_image(particles, box, domain, voxel, progress)
-        k = pore_flow.permeability(solid, spacing, directions, progress, workdir,
-                                   domain.periodic, label="d/%.3g" % (d / voxel))
-        r = {key: k[key] / d ** 2 for key in directions}
-        r.update({"voxel": voxel, "voxels_per_d": d / voxel, "image_xyz": k["image_xyz"],
-                  "porosity_voxel": float(1.0 - solid.mean()), "filled_pore_fraction": filled})
-        for key in ("cells", "iterations", "residuals", "seconds", "solver_cpu_seconds",
-                    "ranks"):
-            r[key] = k[key]
-        r["anisotropy_xx_zz"] = anisotropy(r)
-        resolutions.append(r)
+    resolutions = [resolution(particles, box, domain, voxel, d, offsets, directions, progress,
+                              workdir) for voxel in voxels]
     out = {"units": "d^2", "d": d, "domain": domain.describe(d), "resolutions": resolutions,
            "tolerance": pore_flow.TOLERANCE}
     if len(resolutions) >= 3:
         out["extrapolation"] = {}
         for key in directions:
-            e = extrapolate(voxels, [r[key] for r in resolutions])
+            e = extrapolate(voxels, [r[key] for r in resolutions],
+                            [r[key + "_offset_error"] for r in resolutions])
             out[key], out[key + "_error"] = e["k0"], e["error"]
             out["extrapolation"][key] = e
         if resolutions[0]["anisotropy_xx_zz"] is not None:

@@ -52,11 +52,22 @@ def fitted_order(h, k):
     return 0.5 * (lo + hi)
 
 
-def extrapolate(h, k, p_fixed=P_FIXED):
-    """k0 of k(h) = k0 + C h^p from (h, k) at three or more voxel sizes (any order)"""
+def propagated_error(h, sigma, p):
+    """the standard error of the fixed-p least-squares k0 from independent errors sigma of
+    the values (k0 is linear in them)"""
+    x = np.asarray(h, float) ** p
+    A = np.column_stack([np.ones_like(x), x])
+    row = np.linalg.solve(A.T @ A, A.T)[0]
+    return float(np.sqrt(((row * np.asarray(sigma, float)) ** 2).sum()))
+
+
+def extrapolate(h, k, sigma=None, p_fixed=P_FIXED):
+    """k0 of k(h) = k0 + C h^p from (h, k) at three or more voxel sizes (any order); sigma:
+    the values' own standard errors (of a mean over the grid's offsets), added to the error"""
     order = np.argsort(h)[::-1]
     h = [float(h[i]) for i in order]
     k = [float(k[i]) for i in order]
+    sigma = [0.0] * len(h) if sigma is None else [float(sigma[i]) for i in order]
     if len(h) < 3 or len(set(h)) < len(h):
         raise ValueError("the extrapolation needs three or more different voxel sizes")
     k0_fixed, c_fixed, se = fixed_order_fit(h, k, p_fixed)
@@ -69,6 +80,7 @@ def extrapolate(h, k, p_fixed=P_FIXED):
     else:
         k0 = k0_fixed
         error = abs(k0_fixed - k[-1]) + se
-    return {"k0": k0, "error": error, "p_fitted": p, "k0_fitted_p": k0_fitted,
+    offset_error = propagated_error(h, sigma, p_fixed)
+    return {"k0": k0, "error": error + offset_error, "p_fitted": p, "k0_fitted_p": k0_fitted,
             "p_fixed": p_fixed, "k0_fixed_p": k0_fixed, "fixed_p_standard_error": se,
-            "voxels": h, "k": k}
+            "offset_error": offset_error, "voxels": h, "k": k, "k_offset_errors": sigma}

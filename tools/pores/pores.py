@@ -50,7 +50,8 @@ from deposit_run import read_packing  # noqa: E402
 from pore_input import Particles, read_dump, read_slab, rotation_matrices  # noqa: E402,F401
 from pore_picture import plot  # noqa: E402
 from pore_surface import slab_fraction, slab_surface  # noqa: E402
-from pore_flow_domain import FLOW_BOX, FLOW_VOXEL_FRACTIONS, flow_permeability  # noqa: E402
+from pore_flow_domain import (FLOW_BOX, FLOW_OFFSET_COUNT, FLOW_VOXEL_FRACTIONS,  # noqa: E402
+                              flow_permeability)
 from pore_voxels import analyse_voxels  # noqa: E402
 from study_stats import Pooled  # noqa: E402
 
@@ -162,7 +163,8 @@ def public(result):
 
 
 def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_voxel=None,
-               voxel_fraction=VOXEL_FRACTION, flow_box=FLOW_BOX, flow_box_at=None):
+               voxel_fraction=VOXEL_FRACTION, flow_box=FLOW_BOX, flow_box_at=None,
+               flow_offsets=FLOW_OFFSET_COUNT):
     """analyse RUN_DIR/deposit.dump in the slab of RUN_DIR/packing.dat; write pores.json,
     the voxel image and pores.png (with flow: the permeability tensor's diagonal from the
     flow solve too, at the default voxels and extrapolated, or at flow_voxel alone); return
@@ -177,7 +179,8 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
     # the flow first: its bad input (no pore path, a voxel too large) ends the run early
     k = (flow_permeability(particles, box, pk["zlo"], pk["zhi"],
                            None if flow_voxel is None else [flow_voxel], progress,
-                           side=flow_box, at=flow_box_at) if flow else None)
+                           side=flow_box, at=flow_box_at, offset_count=flow_offsets)
+         if flow else None)
     result = analyse(particles, box, pk["zlo"], pk["zhi"], voxel, progress, voxel_fraction)
     if "phi" in pk:
         result["porosity_check"] = {"one_minus_phi_packing_dat": 1.0 - pk["phi"],
@@ -286,6 +289,10 @@ def main(argv=None):
                          "0: the whole slab)" % FLOW_BOX)
     ap.add_argument("--flow-box-at", default=None, metavar="X,Y",
                     help="the cut box's centre (default: the box's centre)")
+    ap.add_argument("--flow-offsets", type=int, default=FLOW_OFFSET_COUNT, metavar="M",
+                    help="each flow voxel's k is the mean over M offsets of the grid (1, 2 or "
+                         "4; default %d; 1: the grid on the domain's corner)"
+                         % FLOW_OFFSET_COUNT)
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
     args = ap.parse_args(argv)
     import pore_flow
@@ -327,7 +334,8 @@ def report(ap, args):
         if len(at) != 2:
             raise ValueError("--flow-box-at %s: needs X,Y" % args.flow_box_at)
     r = run_folder(d, args.voxel, args.quiet, flow=args.flow, flow_voxel=args.flow_voxel,
-                   voxel_fraction=args.voxel_fraction, flow_box=args.flow_box, flow_box_at=at)
+                   voxel_fraction=args.voxel_fraction, flow_box=args.flow_box, flow_box_at=at,
+                   flow_offsets=args.flow_offsets)
     c = r["convergence"]
     print("pores: %s (%d particles, slab z in [%.4g, %.4g])"
           % (d, r["particles"], r["slab"]["zlo"], r["slab"]["zhi"]))
