@@ -134,7 +134,7 @@ def plot(summary, path):
         bx.errorbar(list(g), [v[0] for v in g.values()], yerr=[v[1] for v in g.values()],
                     fmt=mark, capsize=3, label=label)
     ax.set_ylabel(r"constrained modulus $M$ ($\rho g d$)")
-    bx.set_ylabel(r"$K_0 = \sigma_{xx}/\sigma_{zz}$ (slab)")
+    bx.set_ylabel(r"$K_0 = (\sigma_{xx}+\sigma_{yy})/2\sigma_{zz}$ (slab)")
     for a in (ax, bx):
         a.set_xlabel(r"asphericity $a/c = \eta\zeta$ ($\eta = \zeta$, $\delta_r = 0$)")
         a.set_xscale("log")
@@ -181,7 +181,7 @@ def section(summary):
         "in.oedometer) in steps of %s sigma_w and unloaded; sigma_w = (the deposit's weight) / "
         "(Lx Ly) = %s rho g d. The strain is eps_zz = (H0 - z_p) / H0 with "
         "H0 the piston's height under the first load; M = d sigma / d eps_zz over one step, "
-        "with the piston's stress; K0 = sigma_xx / sigma_zz of the slab (per-atom virial); "
+        "with the piston's stress; K0 = (sigma_xx + sigma_yy) / (2 sigma_zz) of the slab (per-atom virial); "
         "examples/oedometer/README.md defines them and the rest criterion. "
         "Errors: standard error over the %d seeds (|x1 - x2| / 2 for two). N = %d, smaller "
         "than the study's 3000 to fit the compute at hand; in.deposit's box edge grows as "
