@@ -84,15 +84,24 @@ def run(args):
     return ran
 
 
-def summarise(rows):
-    """one dict per case from its rows (levels in order)"""
+def group_cases(rows, key=case_key):
+    """{case: its rows, levels in order}"""
     cases = {}
     for r in rows:
-        cases.setdefault(case_key(r), []).append(r)
+        cases.setdefault(key(r), []).append(r)
+    return cases
+
+
+def number(value):
+    """a csv cell as a float, the empty cell and the phase words as they are"""
+    return float(value) if value not in ("", "load", "unload") else value
+
+
+def summarise(rows):
+    """one dict per case from its rows (levels in order)"""
     out = []
-    for key, levels in sorted(cases.items()):
-        f = [{k: (float(v) if v not in ("", "load", "unload") else v) for k, v in lv.items()}
-             for lv in levels]
+    for key, levels in sorted(group_cases(rows).items()):
+        f = [{k: number(v) for k, v in lv.items()} for lv in levels]
         top = max(range(len(f)), key=lambda i: f[i]["load"])
         out.append({"eta": key[0], "zeta": key[1], "aspect": key[0] * key[1], "seed": key[2],
                     "N": key[3], "M_load": f[top]["M"], "M_unload": f[top + 1]["M"],
