@@ -5,7 +5,7 @@ ketol 1e-6, ztol 1e-5) than the production's, so that the particles' net force i
 
 * At rest the particles' forces balance: the piston's force plus their weight equals the
   floor's plus the side's vertical force. A wrong area, a side force left out or counted with
-  the wrong sign would miss it by the side's share (a third of the load here), the
+  the wrong sign would miss it by the side's share (about half of the load here), the
   criterion's residue is below 1e-5 of the load.
 * The piston's stress is its force over pi R^2, not over the box's cross-section.
 * The side acts: the wall's radial stress on the slab's height is positive; with the

@@ -221,6 +221,7 @@ def block(cases):
                 cells.append("%.*f +- %.*f" % (digits, m, digits, se))
         lines.append("| %g | %s | %s | %s |" % (eta, geometry, " ".join(
             str(c["seed"]) for c in group), " | ".join(cells)))
+    lines += [""] + comparisons(groups)
     rest = min(c["at_rest"] for c in cases)
     n = sorted({c["N"] for c in cases})
     lines += ["", "N = %s; mean +- standard error over the seeds listed (one seed: its value); "
@@ -251,6 +252,32 @@ def one_run_table(rows):
 def blocks():
     """{block name: its text}, from the committed csvs"""
     return {"container": block(all_cases()), "one run": one_run_table(one_run_rows())}
+
+
+def comparisons(groups):
+    """per shape, each side against the periodic box: the difference of the means, its
+    standard error and Welch's p over the seeds (where both have two or more)"""
+    from scipy import stats
+    out = []
+    for eta in sorted({e for e, _ in groups}):
+        ref = groups.get((eta, "periodic"), [])
+        parts = []
+        for (e, geometry), group in sorted(groups.items()):
+            if e != eta or geometry == "periodic" or len(group) < 2 or len(ref) < 2:
+                continue
+            cells = []
+            for q, name, digits in (("M_load", "M loading", 0), ("M_unload", "M unloading", 0),
+                                    ("K0_max", "K0 at 4 sigma_w", 3),
+                                    ("K0_end", "K0 after unloading", 3)):
+                xs, ys = [c[q] for c in group], [c[q] for c in ref]
+                (mx, ex), (my, ey) = mean_se(xs), mean_se(ys)
+                p = stats.ttest_ind(xs, ys, equal_var=False).pvalue
+                cells.append("%s %+.*f +- %.*f (p %.2f)" % (name, digits, mx - my, digits,
+                                                            math.hypot(ex, ey), p))
+            parts.append("%s: %s" % (geometry, "; ".join(cells)))
+        if parts:
+            out.append("* eta = zeta = %g, against the periodic box: %s." % (eta, "; ".join(parts)))
+    return out or ["* No shape has two seeds both in the container and in the periodic box yet."]
 
 
 def generated(text, name):
