@@ -5,8 +5,9 @@ ketol 1e-6, ztol 1e-5) than the production's, so that the particles' net force i
 
 * At rest the particles' forces balance: the piston's force plus their weight equals the
   floor's plus the side's vertical force. A wrong area, a side force left out or counted with
-  the wrong sign would miss it by the side's share (about half of the load here), the
-  criterion's residue is below 1e-5 of the load.
+  the wrong sign would miss it by the side's share (about half of the load here); the rest
+  criterion leaves a net force of 5e-6 (rough side) and 5e-5 (smooth side: the deposit was
+  poured with the rough one and rearranges) of the load, the test allows 2e-4.
 * The piston's stress is its force over pi R^2, not over the box's cross-section.
 * The side acts: the wall's radial stress on the slab's height is positive; with the
   particles' friction it carries part of the load (its vertical force > 0); frictionless,
@@ -72,7 +73,7 @@ def test_forces_balance_at_rest(loaded):
     _, row = loaded
     load = row["F_piston"] + row["weight"]
     assert row["weight"] == pytest.approx(N * math.pi / 6, rel=1e-9)    # printed to 10 digits
-    assert row["F_floor"] + row["F_side"] == pytest.approx(load, rel=1e-4)
+    assert row["F_floor"] + row["F_side"] == pytest.approx(load, rel=2e-4)
 
 
 def test_piston_stress_is_its_force_over_the_cylinder(loaded):
@@ -90,4 +91,4 @@ def test_side_wall_acts(loaded):
         assert row["F_side"] > 0.1 * row["F_piston"]
     else:
         assert row["F_side"] == 0.0
-        assert row["F_floor"] == pytest.approx(row["F_piston"] + row["weight"], rel=1e-4)
+        assert row["F_floor"] == pytest.approx(row["F_piston"] + row["weight"], rel=2e-4)
