@@ -169,6 +169,7 @@ def summarise(rows, geometry, key=oedometer_study.case_key):
         case = {"geometry": geometry(f[0]), "eta": key[0], "seed": key[2], "N": key[3],
                 "M_load": f[top]["M"], "M_unload": f[top + 1]["M"], "K0_first": f[0]["K0"],
                 "K0_max": f[top]["K0"], "K0_end": f[-1]["K0"], "eps_max": f[top]["eps_zz"],
+                "szz_max": f[top]["sigma_zz"], "szz_end": f[-1]["sigma_zz"],
                 "at_rest": int(min(lv["at_rest"] for lv in f))}
         case["K0_wall_max"] = f[top].get("K0_wall", "")
         case["share_max"] = f[top].get("side_share", "")
@@ -178,10 +179,12 @@ def summarise(rows, geometry, key=oedometer_study.case_key):
 
 
 SUMMARY_COLUMNS = ["geometry", "eta", "seed", "N", "M_load", "M_unload", "K0_first", "K0_max",
-                   "K0_end", "eps_max", "K0_wall_max", "share_max", "share_end", "at_rest"]
+                   "K0_end", "eps_max", "szz_max", "szz_end", "K0_wall_max", "share_max", "share_end", "at_rest"]
 QUANTITIES = [("M_load", "M loading 2-4 sigma_w", 0), ("M_unload", "M unloading 4-2 sigma_w", 0),
               ("K0_first", "K0 at 0.5 sigma_w", 3), ("K0_max", "K0 at 4 sigma_w", 3),
               ("K0_end", "K0 after unloading", 3), ("eps_max", "eps_zz at 4 sigma_w", 4),
+              ("szz_max", "slab sigma_zz at 4 sigma_w", 2),
+              ("szz_end", "slab sigma_zz after unloading", 2),
               ("K0_wall_max", "K0 of the wall at 4 sigma_w", 3),
               ("share_max", "side / piston force at 4 sigma_w", 3),
               ("share_end", "side / piston force after unloading", 3)]
@@ -255,29 +258,31 @@ def blocks():
 
 
 def comparisons(groups):
-    """per shape, each side against the periodic box: the difference of the means, its
-    standard error and Welch's p over the seeds (where both have two or more)"""
+    """per shape, each side against the periodic box and the rough side against the smooth:
+    the difference of the means, its standard error and Welch's p over the seeds (where both
+    have two or more)"""
     from scipy import stats
     out = []
     for eta in sorted({e for e, _ in groups}):
-        ref = groups.get((eta, "periodic"), [])
+        names = sorted(g for e, g in groups if e == eta and g != "periodic")
+        pairs = [(g, "periodic") for g in names] + [(b, a) for a, b in zip(names, names[1:])]
         parts = []
-        for (e, geometry), group in sorted(groups.items()):
-            if e != eta or geometry == "periodic" or len(group) < 2 or len(ref) < 2:
+        for a, b in pairs:
+            ga, gb = groups[(eta, a)], groups.get((eta, b), [])
+            if len(ga) < 2 or len(gb) < 2:
                 continue
             cells = []
             for q, name, digits in (("M_load", "M loading", 0), ("M_unload", "M unloading", 0),
                                     ("K0_max", "K0 at 4 sigma_w", 3),
                                     ("K0_end", "K0 after unloading", 3)):
-                xs, ys = [c[q] for c in group], [c[q] for c in ref]
+                xs, ys = [c[q] for c in ga], [c[q] for c in gb]
                 (mx, ex), (my, ey) = mean_se(xs), mean_se(ys)
                 p = stats.ttest_ind(xs, ys, equal_var=False).pvalue
                 cells.append("%s %+.*f +- %.*f (p %.2f)" % (name, digits, mx - my, digits,
                                                             math.hypot(ex, ey), p))
-            parts.append("%s: %s" % (geometry, "; ".join(cells)))
-        if parts:
-            out.append("* eta = zeta = %g, against the periodic box: %s." % (eta, "; ".join(parts)))
-    return out or ["* No shape has two seeds both in the container and in the periodic box yet."]
+            parts.append("%s minus %s: %s" % (a, b, "; ".join(cells)))
+        out += ["* eta = zeta = %g, %s." % (eta, part) for part in parts]
+    return out or ["* No two sides of a shape have two seeds each yet."]
 
 
 def generated(text, name):
