@@ -18,6 +18,7 @@ ketol 1e-6, ztol 1e-5) than the production's, so that the particles' net force i
 """
 import math
 import os
+import subprocess
 
 import pytest
 
@@ -92,3 +93,11 @@ def test_side_wall_acts(loaded):
     else:
         assert row["F_side"] == 0.0
         assert row["F_floor"] == pytest.approx(row["F_piston"] + row["weight"], rel=2e-4)
+
+
+def test_container_without_radius_is_a_clear_error(tmp_path):
+    lmp_binary = os.environ["ELLIPSOID_DEP_LMP"]    # tests/CMakeLists.txt sets it
+    run = subprocess.run([lmp_binary, "-in", CONTAINER, "-log", "none", "-nocite", "-var", "out",
+                          str(tmp_path)], capture_output=True, text=True, timeout=60)
+    assert run.returncode != 0
+    assert "in.container: -var R 0: give the cylinder radius" in run.stdout

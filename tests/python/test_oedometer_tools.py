@@ -83,3 +83,10 @@ def test_container_cases_of_each_wall_friction_stay_apart():
     assert [c["geometry"] for c in cases] == ["side mu_w 0", "side mu_w 0.5"]
     assert [c["K0_first"] for c in cases] == pytest.approx([0.25, 0.5])
     assert [c["share_max"] for c in cases] == pytest.approx([0.0, 0.5])
+
+
+def test_container_refuses_a_cylinder_narrower_than_two_lengths(tmp_path):
+    # N = 100: R = 1.69 d, less than two lengths (2.8 d) of eta = zeta = 1.4
+    with pytest.raises(SystemExit, match="less than two lengths of eta = zeta = 1.4"):
+        oedometer_container.main(["run", "--N", "100", "--shapes", "1.4", "--runs", str(tmp_path)])
+    assert not any(tmp_path.iterdir())    # refused before any run
