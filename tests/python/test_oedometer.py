@@ -130,6 +130,11 @@ def check_level(row, index):
     expected = row["sigma_piston"] + weight_above
     assert row["sigma_zz"] == pytest.approx(expected, rel=3 * max(xis) + FTOL)
     assert abs(row["sigma_xx"]) < 1e-12 and abs(row["sigma_yy"]) < 1e-12    # no side contacts
+    # no side wall: the floor carries the piston's force and the weight (the particles' net
+    # force at rest is within ftol of the load), the side nothing
+    assert row["F_side"] == 0.0 and row["sigma_rr_wall"] == 0.0
+    assert row["F_floor"] == pytest.approx(row["F_piston"] + row["weight"], rel=FTOL)
+    assert row["weight"] == pytest.approx(SIDE**2 * LAYERS * MASS, rel=1e-9)    # printed to 10 digits
 
 
 def test_missing_restart_is_a_clear_error(tmp_path):

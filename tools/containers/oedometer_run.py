@@ -15,7 +15,8 @@ of vertical stress and unload it; write the table and the stress-strain figure.
    height under the first (smallest) load; the constrained modulus of a step is
    M = (sigma_p - sigma_p,prev) / (eps_zz - eps_zz,prev) with the piston's stress sigma_p (the
    weight adds the same stress before and after, so the increment of sigma_zz is the piston's
-   everywhere); K0 = sigma_xx / sigma_zz of the slab, as in.deposit's.
+   everywhere); K0 = (sigma_xx + sigma_yy) / (2 sigma_zz) of the slab, as in.deposit's
+   packing.dat.
 """
 import argparse
 import csv
@@ -129,6 +130,11 @@ def run_oedometer(args, restart, settings, out):
     return levels
 
 
+def k0(level):
+    """the slab's horizontal over vertical stress, the horizontal the mean of x and y"""
+    return (level["sigma_xx"] + level["sigma_yy"]) / (2 * level["sigma_zz"])
+
+
 def table(args, levels):
     """the rows of oedometer.csv: strain, K0 and the modulus of each step"""
     h0 = levels[0]["piston"]
@@ -142,7 +148,7 @@ def table(args, levels):
                "step": int(lv["step"]), "piston": lv["piston"], "eps_zz": eps,
                "sigma_piston": lv["sigma_piston"], "sigma_xx": lv["sigma_xx"],
                "sigma_yy": lv["sigma_yy"], "sigma_zz": lv["sigma_zz"],
-               "K0": lv["sigma_xx"] / lv["sigma_zz"], "M": "",
+               "K0": k0(lv), "M": "",
                "phi_slab": lv["phi"], "phi_mean": lv["sigma_w"] / lv["piston"],
                "sigma_w": lv["sigma_w"], "gain": lv["gain"], "gamma": lv["gamma"]}
         if rows:
@@ -178,7 +184,7 @@ def plot(path, rows, title):
     ax.set_xlabel(r"$\varepsilon_{zz}$ (%)")
     ax.set_ylabel(r"$\sigma_{zz}$ on the piston / $\sigma_w$")
     bx.set_xlabel(r"$\sigma_{zz}$ on the piston / $\sigma_w$")
-    bx.set_ylabel(r"$K_0 = \sigma_{xx}/\sigma_{zz}$ (slab)")
+    bx.set_ylabel(r"$K_0 = (\sigma_{xx}+\sigma_{yy})/2\sigma_{zz}$ (slab)")
     for a in (ax, bx):
         a.legend()
         a.grid(alpha=0.3)

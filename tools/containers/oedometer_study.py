@@ -84,15 +84,24 @@ def run(args):
     return ran
 
 
-def summarise(rows):
-    """one dict per case from its rows (levels in order)"""
+def group_cases(rows, key=case_key):
+    """{case: its rows, levels in order}"""
     cases = {}
     for r in rows:
-        cases.setdefault(case_key(r), []).append(r)
+        cases.setdefault(key(r), []).append(r)
+    return cases
+
+
+def number(value):
+    """a csv cell as a float, the empty cell and the phase words as they are"""
+    return float(value) if value not in ("", "load", "unload") else value
+
+
+def summarise(rows):
+    """one dict per case from its rows (levels in order)"""
     out = []
-    for key, levels in sorted(cases.items()):
-        f = [{k: (float(v) if v not in ("", "load", "unload") else v) for k, v in lv.items()}
-             for lv in levels]
+    for key, levels in sorted(group_cases(rows).items()):
+        f = [{k: number(v) for k, v in lv.items()} for lv in levels]
         top = max(range(len(f)), key=lambda i: f[i]["load"])
         out.append({"eta": key[0], "zeta": key[1], "aspect": key[0] * key[1], "seed": key[2],
                     "N": key[3], "M_load": f[top]["M"], "M_unload": f[top + 1]["M"],
@@ -134,7 +143,7 @@ def plot(summary, path):
         bx.errorbar(list(g), [v[0] for v in g.values()], yerr=[v[1] for v in g.values()],
                     fmt=mark, capsize=3, label=label)
     ax.set_ylabel(r"constrained modulus $M$ ($\rho g d$)")
-    bx.set_ylabel(r"$K_0 = \sigma_{xx}/\sigma_{zz}$ (slab)")
+    bx.set_ylabel(r"$K_0 = (\sigma_{xx}+\sigma_{yy})/2\sigma_{zz}$ (slab)")
     for a in (ax, bx):
         a.set_xlabel(r"asphericity $a/c = \eta\zeta$ ($\eta = \zeta$, $\delta_r = 0$)")
         a.set_xscale("log")
@@ -181,27 +190,28 @@ def section(summary):
         "in.oedometer) in steps of %s sigma_w and unloaded; sigma_w = (the deposit's weight) / "
         "(Lx Ly) = %s rho g d. The strain is eps_zz = (H0 - z_p) / H0 with "
         "H0 the piston's height under the first load; M = d sigma / d eps_zz over one step, "
-        "with the piston's stress; K0 = sigma_xx / sigma_zz of the slab (per-atom virial); "
-        "examples/oedometer/README.md defines them and the rest criterion. "
-        "Errors: standard error over the %d seeds (|x1 - x2| / 2 for two). N = %d, smaller "
+        "with the piston's stress; K0 = (sigma_xx + sigma_yy) / (2 sigma_zz) of the slab "
+        "(per-atom virial); examples/oedometer/README.md defines them and the rest criterion. "
+        "Errors: standard error over each shape's seeds (n of them; |x1 - x2| / 2 for two). "
+        "N = %d, smaller "
         "than the study's 3000 to fit the compute at hand; in.deposit's box edge grows as "
         "sqrt(N), so the deposit's height and sigma_w are those of the study's deposits, and "
         "its edge stays wider than two neighbour cut-offs of the longest particles (eta = zeta "
         "= 3). Not in the paper. Figure: results/oedometer/modulus_k0.png; data: "
         "results/oedometer/oedometer.csv (every step) and summary.csv (every run)."
-        % (n, ", ".join(str(s) for s in seeds), loads, span(sigw, 3), len(seeds), n),
+        % (n, ", ".join(str(s) for s in seeds), loads, span(sigw, 3), n),
         "",
-        "| a/c | M loading 2-4 sigma_w | M unloading 4-2 sigma_w | K0 at %g sigma_w | "
+        "| a/c | n | M loading 2-4 sigma_w | M unloading 4-2 sigma_w | K0 at %g sigma_w | "
         "K0 at %g sigma_w | K0 after unloading | eps_zz at %g sigma_w | phi at %g sigma_w |"
         % (summary[0]["loads"][0], max(summary[0]["loads"]), max(summary[0]["loads"]),
            max(summary[0]["loads"])),
-        "|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for aspect in sorted(table["M_load"]):
         cells = [fmt(table[q][aspect][0], table[q][aspect][1], d)
                  for q, d in (("M_load", 0), ("M_unload", 0), ("K0_first", 3), ("K0_max", 3),
                               ("K0_end", 3), ("eps_max", 4), ("phi_max", 3))]
-        lines.append("| %g | %s |" % (aspect, " | ".join(cells)))
+        lines.append("| %g | %d | %s |" % (aspect, table["M_load"][aspect][2], " | ".join(cells)))
     missing = [x for x in SHAPES if x * x not in table["M_load"]]
     if missing:
         lines += ["", "Not in the table: eta = zeta = %s (planned; examples/oedometer/README.md, "

@@ -9,7 +9,7 @@ direction as the shape deviates from a sphere". Each deposit since the force mea
 * a_f: the anisotropy of the mean normal-force magnitude over the directions (> 0: the
   vertical contacts carry more than their share);
 * a_n + a_f: the force-weighted fabric's anisotropy, the forces' preference for the vertical;
-* K0 = sigma_xx / sigma_zz of the slab.
+* K0 = (sigma_xx + sigma_yy) / (2 sigma_zz) of the slab (packing.dat's).
 
 Only deposits whose packing.dat gives these as means over a window after rest count
 (`window_steps` > 0); before the window a deposit wrote one step's values of a bed that still
