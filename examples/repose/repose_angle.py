@@ -9,8 +9,8 @@ its half-extent along z, sqrt(sum_k (s_k R_zk)^2) for semi-axes s_k and body axe
 flank (left and right of the highest bin) is fitted by a straight line over the bins whose
 height is within [lo, hi] of the peak's (the rounded top and the toe excluded); the angle is
 atan |slope| with the fit's standard error. A run's angle is the mean of its two flanks; a set
-of runs (seeds) gives the mean and its standard error over runs, and the flanks' difference
-says whether the two sides agree.
+of runs (seeds) gives the mean, with the SD of one run pooled over all cases (few seeds per
+case) over sqrt(runs); the flanks' difference says whether the two sides agree.
 """
 import argparse
 import json
@@ -19,7 +19,9 @@ import os
 import sys
 
 import numpy as np
+from scipy.stats import norm, t as student_t
 
+DECIDED = 0.0027       # a difference is decided at the two-sided p of 3 sigma
 WINDOW = (0.2, 0.8)    # the part of the flank's height that is fitted
 BIN = 1.0              # bin width along x, in d
 
@@ -77,12 +79,25 @@ def heap_angle(centres, height, window=WINDOW):
             "height": float(height.max()), "bins": [nl, nr]}
 
 
-def runs_summary(results):
-    """mean angle over runs with its standard error (sd / sqrt(n)); one run: its fit's error"""
+def pooled_sd(groups):
+    """(SD of one run's angle pooled over the cases with two runs or more, its degrees of
+    freedom); (None, 0) without such a case"""
+    squares, dof = 0.0, 0
+    for rs in groups.values():
+        if len(rs) > 1:
+            angles = np.array([r["angle"] for r in rs])
+            squares += np.sum((angles - angles.mean()) ** 2)
+            dof += len(rs) - 1
+    return (math.sqrt(squares / dof), dof) if dof else (None, 0)
+
+
+def runs_summary(results, sd=None):
+    """mean angle over runs and its standard error: sd / sqrt(n) with the pooled sd (seeds per
+    case are few); without one, one run's fit error"""
     angles = np.array([r["angle"] for r in results])
-    if len(angles) == 1:
-        return float(angles[0]), results[0]["angle_se"], 1
-    return float(angles.mean()), float(angles.std(ddof=1) / math.sqrt(len(angles))), len(angles)
+    if sd is None:
+        return float(angles.mean()), results[0]["angle_se"] / math.sqrt(len(angles)), len(angles)
+    return float(angles.mean()), sd / math.sqrt(len(angles)), len(angles)
 
 
 def read_runs(folders):
@@ -99,25 +114,34 @@ def read_runs(folders):
 
 def table(groups):
     """the markdown tables of the README: each case, then each shape against spheres"""
+    sd, dof = pooled_sd(groups)
     rows = ["| eta | zeta | mu | runs | angle (deg) | left - right (deg) | heap height (d) |",
             "|---|---|---|---|---|---|---|"]
     summary = {}
     for (eta, zeta, mu), rs in sorted(groups.items()):
-        mean, se, n = runs_summary(rs)
+        mean, se, n = runs_summary(rs, sd)
         summary[(eta, zeta, mu)] = (mean, se, n)
         diff = np.array([r["left"] - r["right"] for r in rs])
         dse = (diff.std(ddof=1) / math.sqrt(n) if n > 1
                else math.hypot(rs[0]["left_se"], rs[0]["right_se"]))
         rows.append(f"| {eta:g} | {zeta:g} | {mu:g} | {n} | {mean:.1f} +- {se:.1f} | "
                     f"{diff.mean():+.1f} +- {dse:.1f} | {np.mean([r['height'] for r in rs]):.1f} |")
-    rows += ["", "| shape against spheres | mu | difference (deg) | sigma |", "|---|---|---|---|"]
+    rows += ["", (f"Errors: the SD of one run's angle pooled over the cases, {sd:.2f} deg on {dof} "
+                  "degrees of freedom, over sqrt(runs)." if sd else
+                  "Errors: each run's fit error (no case has two runs yet)."),
+             "", "| shape against spheres | mu | difference (deg) | t | p (two-sided) | verdict |",
+             "|---|---|---|---|---|---|"]
     for (eta, zeta, mu), (mean, se, _) in sorted(summary.items()):
         if (eta, zeta) == (1.0, 1.0) or (1.0, 1.0, mu) not in summary:
             continue
         ref, ref_se, _ = summary[(1.0, 1.0, mu)]
         err = math.hypot(se, ref_se)
+        t = abs(mean - ref) / err
+        # the t distribution of the pooled SD's degrees of freedom (normal with fit errors)
+        p = 2 * (student_t.sf(t, dof) if dof else norm.sf(t))
+        verdict = "decided" if p < DECIDED else "undecided"
         rows.append(f"| eta {eta:g} zeta {zeta:g} | {mu:g} | {mean - ref:+.1f} +- {err:.1f} | "
-                    f"{abs(mean - ref) / err:.1f} |")
+                    f"{t:.1f} | {p:.2g} | {verdict} |")
     return "\n".join(rows)
 
 
@@ -130,20 +154,37 @@ def main():
     groups = read_runs(a.table)
     print(table(groups))
     if a.figure:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(7, 3.5))
-        for (eta, zeta, mu), rs in sorted(groups.items()):
-            r = rs[0]
-            ax.plot(r["profile_x"], r["profile_h"], drawstyle="steps-mid",
-                    label=f"eta {eta:g} zeta {zeta:g} mu {mu:g}: {runs_summary(rs)[0]:.1f} deg")
-        ax.set_xlabel("x / d")
-        ax.set_ylabel("heap surface h / d")
-        ax.set_aspect("equal")
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(a.figure, dpi=130)
+        figure(groups, a.figure)
+
+
+def figure(groups, path):
+    """left: each case's first heap (profile and the fitted window); right: the angle against
+    the particles' aspect ratio a/c, per friction, with the standard errors"""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 3.8), gridspec_kw={"width_ratios": [2, 1]})
+    for (eta, zeta, mu), rs in sorted(groups.items()):
+        if mu != max(m for _, _, m in groups):
+            continue
+        r = rs[0]
+        left.plot(r["profile_x"], r["profile_h"], drawstyle="steps-mid",
+                  label=f"eta {eta:g} zeta {zeta:g} (seed {r['seed']}): {r['angle']:.1f} deg")
+    left.set_xlabel("x / d")
+    left.set_ylabel("heap surface above the floor / d")
+    left.set_aspect("equal")
+    left.set_title(f"one heap per shape, mu {max(m for _, _, m in groups):g}", fontsize=9)
+    left.legend(fontsize=7)
+    for mu in sorted({m for _, _, m in groups}):
+        cases = sorted((eta * zeta, runs_summary(rs, pooled_sd(groups)[0]))
+                       for (eta, zeta, m), rs in groups.items() if m == mu)
+        right.errorbar([c for c, _ in cases], [s[0] for _, s in cases],
+                       yerr=[s[1] for _, s in cases], marker="o", capsize=3, label=f"mu {mu:g}")
+    right.set_xlabel("aspect ratio a/c = eta zeta")
+    right.set_ylabel("angle of repose (deg)")
+    right.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
 
 
 if __name__ == "__main__":

@@ -91,3 +91,23 @@ def test_rough_floor_of_in_repose():
     assert np.all(np.abs(x - grid) <= 0.3 + 1e-12) and np.std(x[:, 2]) > 0.05
     assert abs(np.mean(x[:, 2]) - 0.5) < 0.1
     lmp.close()
+
+
+def test_table_pools_the_seed_scatter():
+    """the cases' errors use the SD pooled over cases; a verdict needs p < 0.0027 under the t
+    distribution of the pooled degrees of freedom"""
+    def run(eta, mu, angle):
+        return {"eta": eta, "zeta": eta, "mu": mu, "angle": angle, "angle_se": 0.1,
+                "left": angle, "right": angle, "left_se": 0.1, "right_se": 0.1, "height": 9.0}
+    groups = {(1.0, 1.0, 0.5): [run(1.0, 0.5, a) for a in (25.0, 27.0, 26.0)],
+              (2.0, 2.0, 0.5): [run(2.0, 0.5, a) for a in (33.0, 35.0)]}
+    sd, dof = repose_angle.pooled_sd(groups)
+    assert dof == 3 and sd == pytest.approx(math.sqrt((2.0 + 2.0) / 3))
+    text = repose_angle.table(groups)
+    err = sd * math.sqrt(1 / 3 + 1 / 2)
+    assert f"| eta 2 zeta 2 | 0.5 | +8.0 +- {err:.1f} |" in text
+    # t = 8.0 / 1.054 = 7.59 on 3 degrees of freedom: p = 0.0047, above 0.0027
+    assert text.rstrip().endswith("| 7.6 | 0.0047 | undecided |")
+    groups[(2.0, 2.0, 0.5)] = [run(2.0, 0.5, a) for a in (39.0, 41.0)]
+    # t = 14.0 / 1.054 = 13.3: p = 0.00092
+    assert repose_angle.table(groups).rstrip().endswith("| 13.3 | 0.00092 | decided |")
