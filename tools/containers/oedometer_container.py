@@ -47,9 +47,11 @@ SEEDS = (4928, 4929, 4930)
 MU_W = (0.0, 0.5)
 MU = 0.5                      # the particles' friction (in.deposit's)
 # the rest criterion's kinetic energy per particle: in.deposit's, not in.oedometer's 1e-4. Spheres
-# in a frictionless-sided container (seed 4928, 2 sigma_w) kept 1.338e-4 m g d per particle, the
-# same to four digits over 50 chunks, while the piston stood still (to 1e-6 d) at its target: a
-# motion nothing damps (rolling without slip, say: the law has no rolling resistance; not traced)
+# against the frictionless side keep an undamped spin (seed 4928, 2 sigma_w: 1.338e-4 m g d per
+# particle, 99.8 % of it the rotation of two spheres at the side): each spins about its contact
+# normal with a still neighbour and rolls on the other, fed by the pair's slow descent; no
+# contact slips, and the law has no twisting or rolling resistance (examples/oedometer/
+# README.md, "Oedometer in a container")
 KETOL = 1e-3
 EXTRA = ["R", "mu_w", "sigma_rr_wall", "K0_wall", "F_piston", "F_floor", "F_side", "weight",
          "side_share"]
