@@ -6,12 +6,7 @@ import numpy as np
 sys.path.insert(0, __import__("os").path.join(__import__("os").path.dirname(__import__("os").path.abspath(__file__)), "../../tools/pores"))
 import pores, pore_flow_domain as D
 D.OFFSET_PRECISION = -1.0    # all offsets, for the record
-ZH = {0.027: 2.008, 0.064: 2.810, 0.125: 4.292, 0.216: 7.442, 0.343: 15.4, 0.45: 28.1, 0.5236: 42.1}
-def zh(c):
-    t = sorted(ZH.items())
-    K = math.exp(np.interp(c, [a for a, _ in t], [math.log(b) for _, b in t]))
-    a = (3 * c / (4 * math.pi)) ** (1 / 3)
-    return 1 / (6 * math.pi * a * K), a
+from zick_homsy import permeability as zh
 c, shift, layers, out = float(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), sys.argv[5]
 ns = [float(v) for v in sys.argv[4].split(",")]
 kzh, a = zh(c)

@@ -5,12 +5,7 @@ import sys, math, time
 import numpy as np
 sys.path.insert(0, __import__("os").path.join(__import__("os").path.dirname(__file__), "../../tools/pores"))
 import pore_flow
-ZH = {0.027: 2.008, 0.064: 2.810, 0.125: 4.292, 0.216: 7.442, 0.343: 15.4, 0.45: 28.1, 0.5236: 42.1}
-def zh(c):
-    t = sorted(ZH.items())
-    K = math.exp(np.interp(c, [a for a, _ in t], [math.log(b) for _, b in t]))
-    a = (3 * c / (4 * math.pi)) ** (1 / 3)
-    return 1 / (6 * math.pi * a * K), a
+from zick_homsy import permeability as zh
 c = float(sys.argv[1]); methods = sys.argv[2].split(","); ns = [float(x) for x in sys.argv[3].split(",")]
 shifts = [tuple(float(v) for v in s.split(":")) for s in sys.argv[4].split(",")]
 S = int(sys.argv[5]) if len(sys.argv) > 5 else 4

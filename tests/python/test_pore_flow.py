@@ -14,7 +14,6 @@ OpenFOAM must be installed (`./ellipsoid-dep pores DIR --flow` installs Debian's
 without it every test here fails with that message.
 """
 import json
-import math
 import os
 
 import numpy as np
@@ -22,22 +21,7 @@ import pytest
 
 import pore_flow
 import pores
-
-# Zick & Homsy (1982), J. Fluid Mech. 115, 13-26, Table 2, simple cubic array: solid fraction
-# c -> K, the drag F = 6 pi mu a K U on a sphere of radius a (U the superficial velocity)
-ZICK_HOMSY_SC = {0.027: 2.008, 0.064: 2.810, 0.125: 4.292, 0.216: 7.442, 0.343: 15.4,
-                 0.45: 28.1, 0.5236: 42.1}
-
-
-def zick_homsy_permeability(c):
-    """k of the unit cell at solid fraction c (Table 2, ln K interpolated linearly in c
-    between its rows). Darcy: the force per volume on the spheres, F / 1, balances the
-    pressure gradient mu U / k, so k = 1 / (6 pi a K), a = (3 c / (4 pi))^(1/3)"""
-    table = sorted(ZICK_HOMSY_SC.items())
-    K = math.exp(np.interp(c, [t[0] for t in table], [math.log(t[1]) for t in table]))
-    a = (3.0 * c / (4.0 * math.pi)) ** (1.0 / 3.0)
-    return 1.0 / (6.0 * math.pi * a * K), a
-
+from zick_homsy import permeability as zick_homsy_permeability
 
 def discrete_poiseuille(n, h):
     """k of a slit of n cells of width h from the finite-volume equations (exact): the profile

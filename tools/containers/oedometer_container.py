@@ -20,7 +20,6 @@ both hold the same deposit height and weight stress; R must be at least two part
 (a box at least four lengths wide), or the case is refused.
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -119,16 +118,6 @@ def run_case(case, out):
     return rows
 
 
-def append(path, rows, columns):
-    new = not os.path.exists(path)
-    with open(path, "a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=columns)
-        if new:
-            w.writeheader()
-        for r in rows:
-            w.writerow({k: ("%.8g" % v if isinstance(v, float) else v) for k, v in r.items()})
-
-
 def run(args):
     done = {done_key(r) for r in oedometer_study.read_table(TABLE)}
     ran = 0
@@ -146,7 +135,7 @@ def run(args):
                 out = os.path.join(args.runs, "eta%g-seed%d-muw%g-N%d" % (shape, seed, mu_w,
                                                                           args.N))
                 rows = run_case(case, out)
-                append(TABLE, rows, COLUMNS)
+                oedometer_study.write_csv(TABLE, rows, COLUMNS, append=True)
                 print("oedometer_container: eta %g seed %d mu_w %g done" % (shape, seed, mu_w),
                       flush=True)
                 ran += 1
@@ -299,12 +288,7 @@ def report():
     cases = all_cases()
     if not cases:
         sys.exit("oedometer_container: %s holds no case; run first" % TABLE)
-    with open(SUMMARY, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=SUMMARY_COLUMNS)
-        w.writeheader()
-        for c in cases:
-            w.writerow({k: ("%.8g" % c[k] if isinstance(c[k], float) else c[k])
-                        for k in SUMMARY_COLUMNS})
+    oedometer_study.write_csv(SUMMARY, cases, SUMMARY_COLUMNS)
     with open(README) as f:
         text = f.read()
     for name, new in blocks().items():

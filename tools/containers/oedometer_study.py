@@ -72,14 +72,7 @@ def run(args):
             rows = oedometer_run.main(["--N", str(args.N), "--eta", str(shape), "--zeta",
                                        str(shape), "--dr", "0", "--seed", str(seed),
                                        "--np", str(args.np), "--out", out, "--quiet"])
-            new = not os.path.exists(TABLE)
-            with open(TABLE, "a", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=oedometer_run.COLUMNS)
-                if new:
-                    w.writeheader()
-                for r in rows:
-                    w.writerow({k: ("%.8g" % v if isinstance(v, float) else v)
-                                for k, v in r.items()})
+            write_csv(TABLE, rows, oedometer_run.COLUMNS, append=True)
             ran += 1
     return ran
 
@@ -273,17 +266,25 @@ def verdicts(summary, table):
     return out
 
 
+def write_csv(path, rows, columns, append=False):
+    """rows (dicts) as csv with these columns, floats to 8 significant digits; append=True
+    adds them to the file (its header written once)"""
+    header = not (append and os.path.exists(path))
+    with open(path, "a" if append else "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns)
+        if header:
+            w.writeheader()
+        for row in rows:
+            w.writerow({k: ("%.8g" % row[k] if isinstance(row[k], float) else row[k])
+                        for k in columns if k in row})
+
+
 def report():
     rows = read_table()
     if not rows:
         sys.exit("oedometer_study: %s holds no run; run first" % TABLE)
     summary = summarise(rows)
-    with open(SUMMARY, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=SUMMARY_COLUMNS)
-        w.writeheader()
-        for s in summary:
-            w.writerow({k: ("%.8g" % s[k] if isinstance(s[k], float) else s[k])
-                        for k in SUMMARY_COLUMNS})
+    write_csv(SUMMARY, summary, SUMMARY_COLUMNS)
     plot(summary, FIGURE)
     with open(STUDY_DOC) as f:
         text = f.read()
