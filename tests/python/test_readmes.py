@@ -3,6 +3,7 @@
 * examples/smoke: the styles `plugin list` (in.smoke) prints are the README's list.
 * examples/silo: the README's table is plot_silo.py's table of the committed results/ (the
   runs' wall tables).
+* examples/repose: the README's tables are repose_angle.py's of the committed results/*.json.
 * examples/deposit: the depth numbers (mean particle volume, number-mean diameter, the depth
   at the quoted phi, the smallest N of the default shape) are tools/deposit/deposit_depth.py's.
 * Every example input that includes in.deposit, and every `./ellipsoid-dep run` command in a
@@ -51,6 +52,18 @@ def test_silo_table_is_the_committed_data():
     committed = text[start:text.index("\n\n", start)]
     assert committed == plot_silo.table(plot_silo.runs()), \
         "examples/silo/README.md's table differs from its data: print it with plot_silo.py --table"
+
+
+def test_repose_table_is_the_committed_data():
+    sys.path.insert(0, os.path.join(ROOT, "examples", "repose"))
+    import repose_angle
+    text = readme("repose")
+    start = text.index("<!-- BEGIN generated: repose table -->\n") + len(
+        "<!-- BEGIN generated: repose table -->\n")
+    committed = text[start:text.index("<!-- END generated: repose table -->")].strip()
+    runs = sorted(glob.glob(os.path.join(ROOT, "examples", "repose", "results", "*.json")))
+    assert committed == repose_angle.table(repose_angle.read_runs(runs)), \
+        "examples/repose/README.md's table differs from its data: print it with repose_angle.py --table"
 
 
 def number(pattern, text):
