@@ -395,6 +395,9 @@ def test_course_of_a_force_measure():
     assert study_forces.shape_of_trend(line((0.3, 0.1, 0.0, 0.1, 0.2))).startswith(
         "not monotone: falls to a/c 1.96")
     assert study_forces.shape_of_trend(line((0.0, 0.02, 0.04, 0.1, 0.2))) == "grows with a/c"
+    # a fall with a bump that stays below the roundest (K0 on the prolate line) neither rises
+    # nor dips below the thinnest: it is not "not monotone"
+    assert study_forces.shape_of_trend(line((1.0, 0.8, 0.85, 0.5, 0.0))) == "falls with a/c"
     # a decided slope whose ends are level within their errors (K0 on the diagonal)
     assert study_forces.shape_of_trend({
         "slope_per_unit_a/c": {"verdict": "grows with a/c"},

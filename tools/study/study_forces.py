@@ -73,10 +73,10 @@ def trend(pooled, shapes):
         **decide(fit["slope"] / fit["se"], need, seeds, "grows with a/c", "falls with a/c",
                  dof))}
     out["thinnest_minus_roundest"] = difference(pooled, shapes[-1], shapes[0], seeds)
-    # a trend that saturates: the thinnest shape against the largest value between it and the
-    # roundest (the roundest itself is the row before)
+    # a trend that peaks: the largest value between the ends, above both, against each end
     top = max(shapes[1:-1], key=pooled.mean, default=None)
-    if top is not None and pooled.mean(top) > pooled.mean(shapes[-1]):
+    if top is not None and pooled.mean(top) > max(pooled.mean(shapes[0]),
+                                                  pooled.mean(shapes[-1])):
         out["thinnest_minus_largest"] = difference(pooled, shapes[-1], top, seeds)
         out["largest_minus_roundest"] = difference(pooled, top, shapes[0], seeds)
     # and one that dips: the lowest value between them against both ends
