@@ -164,8 +164,10 @@ def figure(groups, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 3.8), gridspec_kw={"width_ratios": [2, 1]})
+    top_mu = max(m for _, _, m in groups)
+    sd = pooled_sd(groups)[0]
     for (eta, zeta, mu), rs in sorted(groups.items()):
-        if mu != max(m for _, _, m in groups):
+        if mu != top_mu:
             continue
         r = rs[0]
         left.plot(r["profile_x"], r["profile_h"], drawstyle="steps-mid",
@@ -173,10 +175,10 @@ def figure(groups, path):
     left.set_xlabel("x / d")
     left.set_ylabel("heap surface above the floor / d")
     left.set_aspect("equal")
-    left.set_title(f"one heap per shape, mu {max(m for _, _, m in groups):g}", fontsize=9)
+    left.set_title(f"one heap per shape, mu {top_mu:g}", fontsize=9)
     left.legend(fontsize=7)
     for mu in sorted({m for _, _, m in groups}):
-        cases = sorted((eta * zeta, runs_summary(rs, pooled_sd(groups)[0]))
+        cases = sorted((eta * zeta, runs_summary(rs, sd))
                        for (eta, zeta, m), rs in groups.items() if m == mu)
         right.errorbar([c for c, _ in cases], [s[0] for _, s in cases],
                        yerr=[s[1] for _, s in cases], marker="o", capsize=3, label=f"mu {mu:g}")

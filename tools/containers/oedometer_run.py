@@ -105,8 +105,7 @@ def run_oedometer(args, restart, settings, out):
             cmd += ["-var", name, str(settings["vars"][name])]
     for name, value in args.var:
         cmd += ["-var", name, value]
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1")
+    env = deposit_run.mpi_env()
     print("oedometer_run: " + " ".join(shlex.quote(w) for w in cmd), flush=True)
     levels = []
     with open(os.path.join(out, "screen.txt"), "w") as screen:

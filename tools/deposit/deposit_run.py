@@ -112,13 +112,20 @@ class Eta:
         return el, max(0.0, (math.log(ke) - math.log(target)) / rate)
 
 
-def run_lammps(args, settings, out, resume_from=None, resume_step=None):
-    log_name = "log.lammps" if resume_from is None else "log.resume-%d.lammps" % resume_step
-    cmd = lammps_command(settings, out, resume_from, log_name)
+def mpi_env():
+    """the environment for mpirun, as the entry script sets it: Open MPI may run as root
+    (containers) and oversubscribe the cores (a value the caller set is kept)"""
     env = dict(os.environ)
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
     env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     env.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+    return env
+
+
+def run_lammps(args, settings, out, resume_from=None, resume_step=None):
+    log_name = "log.lammps" if resume_from is None else "log.resume-%d.lammps" % resume_step
+    cmd = lammps_command(settings, out, resume_from, log_name)
+    env = mpi_env()
     print("deposit_run: " + " ".join(cmd), flush=True)
     screen = open(os.path.join(out, "screen.txt"), "w" if resume_from is None else "a")
     eta = Eta()
