@@ -153,14 +153,19 @@ def check_voxels(voxels, smallest):
                                          MAX_FLOW_VOXEL_FRACTION * smallest))
 
 
+def offsets_agree(solves, directions):
+    """whether the offsets solved so far fix the mean: each direction's standard error of
+    the mean within OFFSET_PRECISION of it"""
+    return all(standard_error([s[key] for s in solves])
+               <= OFFSET_PRECISION * np.mean([s[key] for s in solves]) for key in directions)
+
+
 def resolution(particles, box, domain, voxel, d, offsets, directions, progress, workdir):
     """k / d^2 at one voxel: the mean over the grid's offsets (the first two, the others
     while they disagree), its standard error, and each offset's solve"""
     solves = []
     for n, offset in enumerate(offsets):
-        if n >= 2 and all(standard_error([s[key] for s in solves])
-                          <= OFFSET_PRECISION * np.mean([s[key] for s in solves])
-                          for key in directions):
+        if n >= 2 and offsets_agree(solves, directions):
             break
         solid, spacing, filled = flow_image(particles, box, domain, voxel, progress, offset)
         label = "d/%.3g" % (d / voxel) + (" offset %d" % (n + 1) if len(offsets) > 1 else "")
@@ -181,6 +186,8 @@ def resolution(particles, box, domain, voxel, d, offsets, directions, progress, 
     for key in directions:
         r[key + "_offset_error"] = standard_error([s[key] for s in solves])
     r["anisotropy_xx_zz"] = anisotropy(r)
+    r["anisotropy_xx_zz_offset_error"] = (None if r["anisotropy_xx_zz"] is None else
+                                          standard_error([s["anisotropy_xx_zz"] for s in solves]))
     r["cells"] = solves[0]["cells"]    # the others differ by the voxels an offset moves
     r["ranks"] = solves[0]["ranks"]
     r["iterations"] = {key: max(s["iterations"][key] for s in solves) for key in directions}
@@ -230,7 +237,8 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
             out[key], out[key + "_error"] = e["k0"], e["error"]
             out["extrapolation"][key] = e
         if resolutions[0]["anisotropy_xx_zz"] is not None:
-            e = extrapolate(voxels, [r["anisotropy_xx_zz"] for r in resolutions])
+            e = extrapolate(voxels, [r["anisotropy_xx_zz"] for r in resolutions],
+                            [r["anisotropy_xx_zz_offset_error"] for r in resolutions])
             out["anisotropy_xx_zz"], out["anisotropy_xx_zz_error"] = e["k0"], e["error"]
             out["extrapolation"]["anisotropy_xx_zz"] = e
     else:

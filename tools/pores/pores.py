@@ -369,9 +369,10 @@ def print_flow(k, porosity):
                                   r["cells"]["zz"]))
     if "extrapolation" in k:
         e = k["extrapolation"]
-        print("  flow k0 (d^2)       " + "  ".join(
-            "%s %.4g +- %.2g (p %s)" % (a, k[a], k[a + "_error"], "none" if e[a]["p_fitted"]
-                                        is None else "%.2f" % e[a]["p_fitted"])
+        print("  flow k0 (d^2; between the line in h^2 and the finest voxel)")
+        print("                      " + "  ".join(
+            "%s %.4g +- %.2g (%.4g to %.4g)" % (a, k[a], k[a + "_error"], e[a]["k0_fixed_p"],
+                                                e[a]["k_finest"])
             for a in ("xx", "yy", "zz")))
         print("  anisotropy k0       %.4f +- %.2g" % (k["anisotropy_xx_zz"],
                                                      k["anisotropy_xx_zz_error"]))
