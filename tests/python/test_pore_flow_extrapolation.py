@@ -266,6 +266,33 @@ def test_a_voxel_is_the_mean_over_the_grid_offsets():
     assert means[1] == pytest.approx(means[0], rel=1e-5)
 
 
+def test_kept_solves_resume_without_solving_again(tmp_path, monkeypatch):
+    """with a folder for the solves (the lines' runs stop and resume across sessions) each
+    offset's solve is kept as it finishes; a rerun takes every kept solve from there and
+    solves only what is missing, with the same result"""
+    h = 1.0 / 6
+    p, box = touching_lattice(0.0)
+    first = pore_flow_domain.flow_permeability(p, box, 2.0, 3.0, [h], directions=("xx",),
+                                               offset_count=2, solved=str(tmp_path))
+    kept = sorted(f.name for f in tmp_path.iterdir())
+    assert kept == ["d6_offset1_xx.json", "d6_offset2_xx.json"]
+    solve = pore_flow.permeability
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append(args[2])
+        return solve(*args, **kwargs)
+    monkeypatch.setattr(pore_flow, "permeability", counted)
+    again = pore_flow_domain.flow_permeability(p, box, 2.0, 3.0, [h], directions=("xx",),
+                                               offset_count=2, solved=str(tmp_path))
+    assert calls == [] and again == first
+    (tmp_path / "d6_offset2_xx.json").unlink()
+    third = pore_flow_domain.flow_permeability(p, box, 2.0, 3.0, [h], directions=("xx",),
+                                               offset_count=2, solved=str(tmp_path))
+    assert calls == [("xx",)]
+    assert third["xx"] == pytest.approx(first["xx"], rel=1e-6)
+
+
 def test_progress_names_resolution_direction_iteration_and_residual(monkeypatch):
     """every iteration's line (PROGRESS_SECONDS 0): flow, the label, the direction, the
     iteration and the driven component's residual, which ends below the tolerance"""

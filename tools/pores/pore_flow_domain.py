@@ -10,6 +10,8 @@ slab is periodic in x and y; a cut box is not, so it is treated in x and y as th
 z: mirrored for the flow along the axis, symmetry planes for the flow across it.
 """
 import copy
+import json
+import os
 
 import numpy as np
 
@@ -160,13 +162,21 @@ def offsets_agree(solves, directions):
                <= OFFSET_PRECISION * np.mean([s[key] for s in solves]) for key in directions)
 
 
-def resolution(particles, box, domain, voxel, d, offsets, directions, progress, workdir):
+def resolution(particles, box, domain, voxel, d, offsets, directions, progress, workdir,
+               solved=None):
     """k / d^2 at one voxel: the mean over the grid's offsets (the first two, the others
-    while they disagree), its standard error, and each offset's solve"""
+    while they disagree), its standard error, and each offset's solve; solved: a folder that
+    keeps each solve (a rerun takes them from there instead of solving again)"""
     solves = []
     for n, offset in enumerate(offsets):
         if n >= 2 and offsets_agree(solves, directions):
             break
+        kept = solved and os.path.join(solved, "d%.6g_offset%d_%s.json" % (
+            d / voxel, n + 1, "_".join(directions)))
+        if kept and os.path.exists(kept):
+            with open(kept) as f:
+                solves.append(json.load(f))
+            continue
         solid, spacing, filled = flow_image(particles, box, domain, voxel, progress, offset)
         label = "d/%.3g" % (d / voxel) + (" offset %d" % (n + 1) if len(offsets) > 1 else "")
         k = pore_flow.permeability(solid, spacing, directions, progress, workdir,
@@ -175,11 +185,15 @@ def resolution(particles, box, domain, voxel, d, offsets, directions, progress, 
         s.update({"offset": list(map(float, offset)), "porosity_voxel": float(1 - solid.mean()),
                   "filled_pore_fraction": filled})
         for key in ("cells", "iterations", "residuals", "seconds", "solver_cpu_seconds",
-                    "ranks"):
+                    "ranks", "image_xyz"):
             s[key] = k[key]
         s["anisotropy_xx_zz"] = anisotropy(s)
         solves.append(s)
-    r = {"voxel": voxel, "voxels_per_d": d / voxel, "image_xyz": k["image_xyz"],
+        if kept:
+            os.makedirs(solved, exist_ok=True)
+            with open(kept, "w") as f:
+                json.dump(s, f)
+    r = {"voxel": voxel, "voxels_per_d": d / voxel, "image_xyz": solves[0]["image_xyz"],
          "offsets": solves}
     for key in list(directions) + ["porosity_voxel", "filled_pore_fraction"]:
         r[key] = float(np.mean([s[key] for s in solves]))
@@ -206,7 +220,7 @@ def standard_error(values):
 
 def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, workdir=None,
                       directions=("xx", "yy", "zz"), side=FLOW_BOX, at=None,
-                      offset_count=FLOW_OFFSET_COUNT):
+                      offset_count=FLOW_OFFSET_COUNT, solved=None):
     """k along directions in units of d^2: at each voxel (default FLOW_VOXEL_FRACTIONS of the
     smallest semi-axis) the mean over the grid's offsets (fractions of a voxel in x and y),
     and with three or more voxels extrapolated to a vanishing voxel"""
@@ -226,7 +240,7 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
         domain.describe(d)["kind"], " x ".join("%.3g" % s for s in domain.describe(d)["sides_d"]),
         ", d/".join("%.3g" % (d / v) for v in voxels)))
     resolutions = [resolution(particles, box, domain, voxel, d, offsets, directions, progress,
-                              workdir) for voxel in voxels]
+                              workdir, solved) for voxel in voxels]
     out = {"units": "d^2", "d": d, "domain": domain.describe(d), "resolutions": resolutions,
            "tolerance": pore_flow.TOLERANCE}
     if len(resolutions) >= 3:

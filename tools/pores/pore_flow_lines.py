@@ -10,7 +10,8 @@ voxels, extrapolated to a vanishing voxel), or at the voxels d / N given (three 
 extrapolated; one: that voxel alone; flat shapes at the default voxels, fractions of the
 smallest semi-axis, need (eta zeta^2)^(1/3) times more voxels per d than spheres in each
 direction) writes OUT/<folder name>.json
-(skipped when it exists: one command per deposit, and reruns only add what is missing); then
+(skipped when it exists: one command per deposit, and reruns only add what is missing; each
+solve is kept in OUT/<folder name>.solves/ as it finishes, so a stopped run resumes); then
 OUT/flow_lines.csv (one row per deposit: eta, zeta, seed, porosity, k_xx, k_zz in d^2 with
 their errors, the anisotropy, the ratio to Kozeny-Carman, the finest voxel's cells, the
 iterations and seconds) and OUT/flow_lines.png (k_xx, k_zz, anisotropy and k_zz / k_KC
@@ -45,7 +46,7 @@ def solve_folder(folder, out, voxels_per_d, directions, side):
     t0 = time.time()
     k = pore_flow_domain.flow_permeability(
         particles, box, zlo, zhi, voxels_per_d and [d / n for n in voxels_per_d], progress,
-        directions=directions, side=side)
+        directions=directions, side=side, solved=path[:-len(".json")] + ".solves")
     v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
     solid = (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum()
     porosity = 1.0 - solid / v_slab
