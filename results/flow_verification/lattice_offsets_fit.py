@@ -24,12 +24,9 @@ for (c, shift), rows in cases.items():
     h = [1 / n for n in NS]
     line, values = [], {}
     for key in ("xx", "zz"):
-        used = []
-        for n in NS:
-            solves = rows[n]["resolution"]["offsets"]
-            used.append(solves[:2] if D.offsets_agree(solves[:2], ("xx", "zz")) else solves)
+        used = [D.offsets_taken(rows[n]["resolution"]["offsets"], ("xx", "zz")) for n in NS]
         k = [np.mean([s[key] for s in u]) for u in used]
-        e = extrapolate(h, k, [D.standard_error([s[key] for s in u]) for u in used])
+        e = extrapolate(h, k, [D.offset_error([s[key] for s in u], len(u) == 2) for u in used])
         values[key] = k
         line.append("%s: %s; k0 %+.1f +- %.1f %% (p=2 %+.1f, finest %+.1f; fitted p %s; offsets %s)" % (
             key, ", ".join("%+.1f" % (100 * (v / want - 1)) for v in k),
@@ -39,11 +36,10 @@ for (c, shift), rows in cases.items():
             ",".join(str(len(u)) for u in used)))
     ratio, ratio_se = [], []
     for n in NS:
-        solves = rows[n]["resolution"]["offsets"]
-        u = solves[:2] if D.offsets_agree(solves[:2], ("xx", "zz")) else solves
+        u = D.offsets_taken(rows[n]["resolution"]["offsets"], ("xx", "zz"))
         each = [s["xx"] / s["zz"] for s in u]
         ratio.append(np.mean(each))
-        ratio_se.append(D.standard_error(each))
+        ratio_se.append(D.offset_error(each, len(u) == 2))
     e = extrapolate(h, ratio, ratio_se)
     print("c %g shift %g d | %s | xx/zz %s; k0 %.3f +- %.3f" % (
         c, shift, " | ".join(line), ", ".join("%.3f +- %.3f" % v for v in zip(ratio, ratio_se)),

@@ -29,6 +29,8 @@ MAX_FLOW_VOXEL_FRACTION = 1.0  # the flow needs at least 2 voxels across the thi
 # contacts fall between the voxel centres by up to 55 % (howto, "Voxels, offsets and the
 # extrapolation"), the mean far less. Two offsets, and all FLOW_OFFSET_COUNT of them unless
 # the two agree: each direction's standard error of the mean within OFFSET_PRECISION of it.
+# The mean of two that agree is known to OFFSET_PRECISION, not to their standard error (one
+# degree of freedom, and 0 where the two images coincide): that is its error.
 OFFSETS = ((0.0, 0.0), (0.5, 0.5), (0.0, 0.5), (0.5, 0.0))
 FLOW_OFFSET_COUNT = 4
 OFFSET_PRECISION = 0.01
@@ -162,6 +164,19 @@ def offsets_agree(solves, directions):
                <= OFFSET_PRECISION * np.mean([s[key] for s in solves]) for key in directions)
 
 
+def offsets_taken(solves, directions):
+    """the solves the rule takes out of offsets solved in order: the first two when they
+    agree, all otherwise"""
+    return solves[:2] if offsets_agree(solves[:2], directions) else solves
+
+
+def offset_error(values, agreed):
+    """the error of the mean over the offsets' values: their standard error, at least
+    OFFSET_PRECISION of the mean where the rule stopped at two that agree"""
+    se = standard_error(values)
+    return max(se, OFFSET_PRECISION * abs(float(np.mean(values)))) if agreed else se
+
+
 def resolution(particles, box, domain, voxel, d, offsets, directions, progress, workdir,
                solved=None):
     """k / d^2 at one voxel: the mean over the grid's offsets (the first two, the others
@@ -197,11 +212,13 @@ def resolution(particles, box, domain, voxel, d, offsets, directions, progress, 
          "offsets": solves}
     for key in list(directions) + ["porosity_voxel", "filled_pore_fraction"]:
         r[key] = float(np.mean([s[key] for s in solves]))
+    agreed = len(solves) == 2 and offsets_agree(solves, directions)
     for key in directions:
-        r[key + "_offset_error"] = standard_error([s[key] for s in solves])
+        r[key + "_offset_error"] = offset_error([s[key] for s in solves], agreed)
     r["anisotropy_xx_zz"] = anisotropy(r)
     r["anisotropy_xx_zz_offset_error"] = (None if r["anisotropy_xx_zz"] is None else
-                                          standard_error([s["anisotropy_xx_zz"] for s in solves]))
+                                          offset_error([s["anisotropy_xx_zz"] for s in solves],
+                                                       agreed))
     r["cells"] = solves[0]["cells"]    # the others differ by the voxels an offset moves
     r["ranks"] = solves[0]["ranks"]
     r["iterations"] = {key: max(s["iterations"][key] for s in solves) for key in directions}
