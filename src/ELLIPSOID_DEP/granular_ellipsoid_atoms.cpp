@@ -26,11 +26,6 @@ void EllipsoidAtoms::require_granular_style(LAMMPS *lmp, const char *who)
     lmp->error->all(FLERR, "{} requires per-atom mass, angmom and torque", who);
 }
 
-bool EllipsoidAtoms::has_shape(int i) const
-{
-  return atom->ellipsoid[i] >= 0;
-}
-
 void EllipsoidAtoms::require_shapes(LAMMPS *lmp, const char *who, int n, int groupbit) const
 {
   for (int i = 0; i < n; i++)

@@ -48,7 +48,7 @@ class EllipsoidAtoms {
   void require_shapes(LAMMPS *lmp, const char *who, int n, int groupbit = 0) const;
   [[noreturn]] void missing_shape(LAMMPS *lmp, const char *who, int i, int groupbit = 0) const;
 
-  bool has_shape(int i) const;           // atom i carries ellipsoid bonus data
+  bool has_shape(int i) const { return atom->ellipsoid[i] >= 0; }    // carries bonus data
   const double *shape(int i) const;      // semi-axes along the body axes
   const double *quat(int i) const;       // (w, x, y, z), body -> box
   double bounding_radius(int i) const    // largest semi-axis
