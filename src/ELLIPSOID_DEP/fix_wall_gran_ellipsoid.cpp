@@ -190,23 +190,27 @@ void FixWallGranEllipsoid::wall_forces()
 
     for (int k = 0; k < nwalls; k++) {
       const WallSurface &w = walls[k];
-      // bounding sphere clear of the wall: no contact
-      FaceContacts found;
-      if (wall_clearance(w, Vec3(x[i][0], x[i][1], x[i][2])) < bound) {
-        if (!built) {
-          state.shape = atoms.ellipsoid(i);
-          built = true;
-        }
-        found = wall_contacts(state.shape, w);
-        for (int c = 0; c < found.count; c++) {
-          ContactGeometry &g = found.contact[c];
-          // a curved wall's iteration cap: the last iterate is used, and counted
-          if (g.status == Status::NotConverged) {
-            unconverged++;
-            if (g.overlap > 0.0) g.status = Status::Overlapping;
-          } else if (g.status == Status::Degenerate) {
-            degenerate++;
-          }
+      // bounding sphere clear of the wall (most atoms): no contact, its history forgotten
+      // (what match_history does with no contact, without building one)
+      if (!(wall_clearance(w, Vec3(x[i][0], x[i][1], x[i][2])) < bound)) {
+        if (size_history && history_update)
+          std::fill(&history_one[i][history_offset[k]], &history_one[i][history_offset[k + 1]],
+                    0.0);
+        continue;
+      }
+      if (!built) {
+        state.shape = atoms.ellipsoid(i);
+        built = true;
+      }
+      FaceContacts found = wall_contacts(state.shape, w);
+      for (int c = 0; c < found.count; c++) {
+        ContactGeometry &g = found.contact[c];
+        // a curved wall's iteration cap: the last iterate is used, and counted
+        if (g.status == Status::NotConverged) {
+          unconverged++;
+          if (g.overlap > 0.0) g.status = Status::Overlapping;
+        } else if (g.status == Status::Degenerate) {
+          degenerate++;
         }
       }
       // each contact region's history slot (a new one's cleared; setup: zeros)

@@ -26,11 +26,6 @@ void EllipsoidAtoms::require_granular_style(LAMMPS *lmp, const char *who)
     lmp->error->all(FLERR, "{} requires per-atom mass, angmom and torque", who);
 }
 
-bool EllipsoidAtoms::has_shape(int i) const
-{
-  return atom->ellipsoid[i] >= 0;
-}
-
 void EllipsoidAtoms::require_shapes(LAMMPS *lmp, const char *who, int n, int groupbit) const
 {
   for (int i = 0; i < n; i++)
@@ -52,12 +47,15 @@ void EllipsoidAtoms::missing_shape(LAMMPS *lmp, const char *who, int i, int grou
 EllipsoidDep::Vec3 EllipsoidAtoms::omega(int i, const EllipsoidDep::Mat3 &rotation) const
 {
   // as MathExtra::mq_to_omega, with the rotation the shape was built from
+  return rotation * principal_omega(i, rotation.transpose() * angmom(i));
+}
+
+EllipsoidDep::Vec3 EllipsoidAtoms::principal_omega(int i, Vec3 body) const
+{
   double moments[3];
   inertia(i, moments);
-  Vec3 body =
-      rotation.transpose() * Vec3(atom->angmom[i][0], atom->angmom[i][1], atom->angmom[i][2]);
   for (int k = 0; k < 3; k++) body[k] = moments[k] == 0.0 ? 0.0 : body[k] / moments[k];
-  return rotation * body;
+  return body;
 }
 
 EllipsoidDep::Ellipsoid EllipsoidAtoms::ellipsoid(int i) const

@@ -48,7 +48,7 @@ class EllipsoidAtoms {
   void require_shapes(LAMMPS *lmp, const char *who, int n, int groupbit = 0) const;
   [[noreturn]] void missing_shape(LAMMPS *lmp, const char *who, int i, int groupbit = 0) const;
 
-  bool has_shape(int i) const;           // atom i carries ellipsoid bonus data
+  bool has_shape(int i) const { return atom->ellipsoid[i] >= 0; }    // carries bonus data
   const double *shape(int i) const;      // semi-axes along the body axes
   const double *quat(int i) const;       // (w, x, y, z), body -> box
   double bounding_radius(int i) const    // largest semi-axis
@@ -70,6 +70,12 @@ class EllipsoidAtoms {
   void inertia(int i, double *moments) const;    // principal moments (body frame)
   // angular velocity (box frame) from the angular momentum, rotation: body -> box of atom i
   EllipsoidDep::Vec3 omega(int i, const EllipsoidDep::Mat3 &rotation) const;
+  // angular velocity along atom i's principal axes from its angular momentum there
+  EllipsoidDep::Vec3 principal_omega(int i, EllipsoidDep::Vec3 body) const;
+  EllipsoidDep::Vec3 angmom(int i) const
+  {
+    return EllipsoidDep::Vec3(atom->angmom[i][0], atom->angmom[i][1], atom->angmom[i][2]);
+  }
   // atom i's ellipsoid by EllipsoidDep::make_particle (a sphere in the identity frame)
   EllipsoidDep::Ellipsoid ellipsoid(int i) const;
   EllipsoidState state(int i) const;
@@ -79,7 +85,12 @@ class EllipsoidAtoms {
   // update_state without the angular velocity (s.omega left stale), for a caller that needs it
   // only at contacts: add_omega(i, s) then gives it, bit for bit update_state's
   void update_shape(int i, EllipsoidState &s, ShapeKey &key) const;
-  void add_omega(int i, EllipsoidState &s) const { s.omega = omega(i, s.shape.rotation); }
+  void add_omega(int i, EllipsoidState &s) const
+  {
+    // a valid sphere's state is in the identity frame (make_particle): omega() in that frame
+    s.omega = s.shape.sphere && s.shape.finite ? principal_omega(i, angmom(i))
+                                               : omega(i, s.shape.rotation);
+  }
   // state(i) into s as a copy of atom k's state sk (key kk) moved to i's centre, when i and k
   // carry the same values bit for bit (bonus, velocity, angular momentum, mass, inertia), as a
   // periodic image does: identical to update_state(i, s, key) then (s.omega is sk's, stale

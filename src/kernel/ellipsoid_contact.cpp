@@ -53,14 +53,20 @@ namespace {
 
 ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b)
 {
-  ContactGeometry g;
   if (!valid(a) || !valid(b)) {
+    ContactGeometry g;
     g.status = Status::Degenerate;
     return g;
   }
-  const double ra = a.bounding_radius, rb = b.bounding_radius;
   const Vec3 dc = b.center - a.center;
-  const double dist = dc.norm();
+  return valid_sphere_contact(a, b, dc, dc.norm());
+}
+
+ContactGeometry valid_sphere_contact(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc,
+                                     double dist)
+{
+  ContactGeometry g;
+  const double ra = a.bounding_radius, rb = b.bounding_radius;
   // coincident centres: any direction is a minimiser; +z by convention
   const Vec3 n = dist > 0.0 ? Vec3(dc / dist) : Vec3(0.0, 0.0, 1.0);
   g.normal = n;

@@ -83,6 +83,10 @@ ContactGeometry valid_ellipsoid_contact(const Ellipsoid &a, const Ellipsoid &b,
 
 // Closed-form sphere-sphere contact (used automatically when both are spheres).
 ContactGeometry sphere_contact(const Ellipsoid &a, const Ellipsoid &b);
+// sphere_contact of two spheres that valid() accepts, without those checks, for callers that
+// made them and have dc = c_B - c_A and dist = |dc| (as bounding_test computes them)
+ContactGeometry valid_sphere_contact(const Ellipsoid &a, const Ellipsoid &b, const Vec3 &dc,
+                                     double dist);
 
 }    // namespace EllipsoidDep
 

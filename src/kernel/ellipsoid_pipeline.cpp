@@ -80,8 +80,9 @@ ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
   // pairs that newly come close.
   const bool continuing_contact = state == PairHistory::State::Contact && have_n;
   if (continuing_contact) ++counters.continued;
-  const Vec3 start_n = continuing_contact ? history.predicted_normal(cached_n) : cached_n;
-  if (settings.use_wang && !continuing_contact) {
+  // two spheres: their closed form decides every pair exactly, without a Wang test or a start
+  const bool spheres = a.sphere && b.sphere;
+  if (settings.use_wang && !continuing_contact && !spheres) {
     ++counters.wang_calls;
     const Status ws = wang_classify(a, b, settings.contact);
     if (ws == Status::Degenerate) {
@@ -100,9 +101,9 @@ ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
     }
   }
   // ellipsoid_contact without its validity checks, made above (two spheres: its closed form)
-  const bool spheres = a.sphere && b.sphere;
+  const Vec3 start_n = continuing_contact ? history.predicted_normal(cached_n) : cached_n;
   ContactGeometry g = spheres
-      ? sphere_contact(a, b)
+      ? valid_sphere_contact(a, b, dc, dist)
       : valid_ellipsoid_contact(a, b, settings.contact, have_n ? &start_n : nullptr);
   counters.iterations += g.iterations;
   // a warm start can lie in the basin of a spurious local minimum of d, far deeper than the
@@ -110,15 +111,17 @@ ContactGeometry evaluate_near_pair(const Ellipsoid &a, const Ellipsoid &b,
   // checked against the cold start, and the shallower minimum is the contact (or the gap)
   // (a cold start that reaches the same minimum, equal to round-off, leaves the warm result)
   bool replaced = false;
-  const double thinnest = std::min(a.semi_axes.minCoeff(), b.semi_axes.minCoeff());
-  if (have_n && !spheres && g.status != Status::Degenerate &&
-      g.overlap > CHECKED_OVERLAP_FRACTION * thinnest) {
-    ContactGeometry cold = valid_ellipsoid_contact(a, b, settings.contact, nullptr);
-    counters.iterations += cold.iterations;
-    if (cold.status != Status::Degenerate && cold.overlap < g.overlap - SAME_MINIMUM * thinnest) {
-      ++counters.spurious_minima;
-      g = cold;
-      replaced = true;
+  if (have_n && !spheres && g.status != Status::Degenerate) {
+    const double thinnest = std::min(a.semi_axes.minCoeff(), b.semi_axes.minCoeff());
+    if (g.overlap > CHECKED_OVERLAP_FRACTION * thinnest) {
+      ContactGeometry cold = valid_ellipsoid_contact(a, b, settings.contact, nullptr);
+      counters.iterations += cold.iterations;
+      if (cold.status != Status::Degenerate &&
+          cold.overlap < g.overlap - SAME_MINIMUM * thinnest) {
+        ++counters.spurious_minima;
+        g = cold;
+        replaced = true;
+      }
     }
   }
   if (g.corrected) ++counters.corrections;

@@ -9,7 +9,8 @@
    - A is the first body, B the second; the history belongs to the ordered pair (A, B) (see
      ellipsoid_pair_history.h for the layout and the swap rule).
    - Every evaluation ends in exactly one of: bounding reject, plane hit, Wang test (or the
-     iteration directly when use_wang is off), continued contact.
+     iteration directly when use_wang is off, the closed form directly for two spheres),
+     continued contact.
    - A contact history is used only by the pair and periodic image it was made for
      (PairHistory::belongs_to); another pair's row is cleared, the force law's slots
      included, and counted (foreign_histories): the pair is then evaluated as new.

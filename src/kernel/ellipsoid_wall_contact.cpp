@@ -79,11 +79,11 @@ namespace {
 
 }    // namespace
 
-double wall_clearance(const WallSurface &w, const Vec3 &x)
+double shaped_wall_clearance(const WallSurface &w, const Vec3 &x)
 {
   switch (w.shape) {
     case WallShape::Plane:
-      return w.normal.dot(x) - w.offset;
+      return wall_clearance(w, x);
     case WallShape::Sphere: {
       const double r = (x - w.center).norm();
       return w.inside ? w.radius - r : r - w.radius;

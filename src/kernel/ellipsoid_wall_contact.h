@@ -4,8 +4,9 @@
    wall_clearance() and wall_contact() dispatch on the shape, one row per shape.
 
    Add a wall shape: its contact in a kernel file of its own (as ellipsoid_plane_contact.*),
-   a WallShape entry with its parameters in WallSurface, and its row in wall_clearance() and
-   wall_contact() (ellipsoid_wall_contact.cpp); the fix gives it a keyword.
+   a WallShape entry with its parameters in WallSurface, and its row in
+   shaped_wall_clearance() and wall_contact() (ellipsoid_wall_contact.cpp); the fix gives it
+   a keyword.
 
    Conventions (every shape)
    - The ellipsoid is body A, the wall body B. The result's normal points from the particle
@@ -60,7 +61,13 @@ struct WallSurface {
   Vec3 lower = Vec3::Constant(-INFINITY), upper = Vec3::Constant(INFINITY);
 };
 
-double wall_clearance(const WallSurface &w, const Vec3 &x);
+// wall_clearance of the curved and bounded shapes (every shape but the plane)
+double shaped_wall_clearance(const WallSurface &w, const Vec3 &x);
+inline double wall_clearance(const WallSurface &w, const Vec3 &x)
+{
+  // a plane inline: the walls test every atom against it at every step
+  return w.shape == WallShape::Plane ? w.normal.dot(x) - w.offset : shaped_wall_clearance(w, x);
+}
 // the deepest contact
 ContactGeometry wall_contact(const Ellipsoid &e, const WallSurface &w);
 // the same surface, every field equal (a field added to WallSurface belongs here too)

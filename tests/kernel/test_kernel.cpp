@@ -483,6 +483,31 @@ TEST(Pipeline, BoundingRejectWritesOnlyARowInUse)
   EXPECT_EQ(cnt.bounding_rejects, 2);
 }
 
+// Two spheres whose bounding spheres meet go to their closed form without a Wang test (it
+// could only confirm it); a sphere and an ellipsoid are tested as before.
+TEST(Pipeline, TwoSpheresNeedNoWangTest)
+{
+  const Ellipsoid a = make_ellipsoid(Vec3::Zero(), Mat3::Identity(), Vec3(0.5, 0.5, 0.5));
+  const Ellipsoid b = make_ellipsoid(Vec3(0.3, 0.4, 0.7), Mat3::Identity(), Vec3(0.6, 0.6, 0.6));
+  PipelineSettings ps;
+  PipelineCounters cnt;
+  double cache[PairHistory::PIPELINE_SIZE] = {};
+  const auto g = evaluate_pair(a, b, ps, cache, cnt);
+  const auto s = sphere_contact(a, b);
+  EXPECT_EQ(g.status, Status::Overlapping);
+  EXPECT_EQ(g.overlap, s.overlap);
+  EXPECT_EQ(g.normal, s.normal);
+  EXPECT_EQ(g.point, s.point);
+  EXPECT_EQ(g.effective_radius, s.effective_radius);
+  EXPECT_EQ(cnt.wang_calls, 0);
+  EXPECT_EQ(cnt.contacts, 1);
+  EXPECT_EQ(PairHistory(cache).state(), PairHistory::State::Contact);
+  const Ellipsoid e = make_ellipsoid(b.center, Mat3::Identity(), Vec3(0.6, 0.6, 0.5));
+  double other[PairHistory::PIPELINE_SIZE] = {};
+  evaluate_pair(a, e, ps, other, cnt);
+  EXPECT_EQ(cnt.wang_calls, 1);
+}
+
 // ---------------------------------------------------------------------------
 TEST(Settings, FastModeAndIterationCap)
 {
