@@ -10,12 +10,13 @@ WORK/fill.json (N, the fill height H: the mean centre height of the top layer, i
 highest particles, plus d/2; the bulk density rho_b = mass / (pi R^2 H)). Each orifice
 (in.orifice, from the restart): the plug replaced by the floor with a hole of diameter D0, run
 in chunks of --chunk time; after each chunk the particles that fell below z = -2 are counted
-and lifted back above the pile (at rest, random places in a band 1-3 d above the fill height,
-clear of the others), so the head stays at H. The cumulative discharged mass against time goes
+and lifted back above the pile (at rest, random places in a band 1 to --band d above the fill
+height, clear of the others), so the head stays at H. The cumulative discharged mass against time goes
 to RESULTS/D<D0>.dat, the steady rate over t >= --t0 (tools/containers/discharge.py:
 steady_rate, time blocks for its error) to RESULTS/D<D0>.json. Finished orifices (their json)
-and a finished fill are skipped: the run resumes. --tag names a variant (e.g. the stiffness
-check: --kn 1e4 --K 200 --dt 1e-3 --tag stiff) written as D<D0>_<tag>.*.
+and a finished fill are skipped: the run resumes. Another law (the stiffness check) is
+another --name with its own fill (--fill-law): a settled pile switched to a stiffer law
+releases its overlaps' energy.
 """
 import argparse
 import json
@@ -52,13 +53,15 @@ def parse_args(argv=None):
     p.add_argument("--t0", type=float, default=5.0, help="the transient after opening")
     p.add_argument("--T", type=float, default=20.0, help="the steady window's length")
     p.add_argument("--ketol", type=float, default=1e-3)
+    p.add_argument("--band", type=float, default=3.0,
+                   help="the lifted particles go 1 to BAND d above the fill height")
     p.add_argument("--angle", type=float, default=0.0,
                    help="a conical hopper's half-angle (degrees; 0: the flat floor); its "
                         "outlet is the one --D0, given to the fill")
-    p.add_argument("--tag", default="")
     a = p.parse_args(argv)
-    if a.N < 1 or not a.R > 2.0 or min(a.D0) <= 0 or a.chunk <= 0 or a.T <= 0 or a.t0 < 0:
-        p.error("--N >= 1, --R > 2, --D0 > 0, --chunk > 0, --T > 0 and --t0 >= 0")
+    if a.N < 1 or not a.R > 2.0 or min(a.D0) <= 0 or a.chunk <= 0 or a.T <= 0 or a.t0 < 0 \
+            or not a.band > 1.0:
+        p.error("--N >= 1, --R > 2, --D0 > 0, --chunk > 0, --T > 0, --t0 >= 0, --band > 1")
     if a.angle > 0 and len(a.D0) != 1:
         p.error("--angle: a hopper has one outlet (one --D0)")
     if 2.0 * a.R < 2.5 * max(a.D0):
@@ -146,7 +149,7 @@ def lift(lmp, band, radius, centre, reach, rng):
 
 def orifice(a, filled, d0):
     """one orifice: the series and its steady rate (skipped when its json exists)"""
-    stem = os.path.join(a.results, "D%g%s" % (d0, "_" + a.tag if a.tag else ""))
+    stem = os.path.join(a.results, "D%g" % d0)
     if os.path.isfile(stem + ".json"):
         print(f"{stem}: finished, skipped", flush=True)
         return
@@ -155,7 +158,7 @@ def orifice(a, filled, d0):
                       dict(restart=os.path.join(a.work, "fill.restart"), D0=d0, R=a.R, kn=a.kn,
                            K=a.K, dt=a.dt))
     reach = (a.eta**2 * a.zeta) ** (1.0 / 3.0) + 0.05    # the largest axis, a bit more
-    band = (filled["H"] + 1.0, filled["H"] + 3.0)
+    band = (filled["H"] + 1.0, filled["H"] + a.band)
     rng = np.random.default_rng(a.seed + int(100 * d0))
     steps = max(1, round(a.chunk / a.dt))
     rows, count, mass = [], 0, 0.0
@@ -171,7 +174,7 @@ def orifice(a, filled, d0):
     rows = np.array(rows)
     np.savetxt(stem + ".dat", rows, fmt="%.8g", header="t count mass H")
     out = discharge.steady_rate(rows[:, 0], rows[:, 2], a.t0)
-    out.update(D0=d0, kn=a.kn, K=a.K, dt=a.dt, count=int(count), H_mean=float(rows[:, 3].mean()),
+    out.update(D0=d0, kn=a.kn, K=a.K, dt=a.dt, band=a.band, count=int(count), H_mean=float(rows[:, 3].mean()),
                H_min=float(rows[:, 3].min()), minutes=(time.time() - start) / 60.0)
     json.dump(out, open(stem + ".json", "w"), indent=1)
     print(f"D0 {d0}: W {out['rate']:.4g} +- {out['se']:.2g} ({out['minutes']:.1f} min)",
