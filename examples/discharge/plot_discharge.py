@@ -47,7 +47,8 @@ def fits(data):
 def table(data):
     """the README's tables: the rates per orifice, then the fits and the stiffness check"""
     rows = ["| shape | D0 / d | W (mass / time) | W / (rho_b sqrt(g) d^(5/2)) | particles "
-            "out (all) | window (time) | lift band | minutes |", "|---|---|---|---|---|---|---|---|"]
+            "out (all) | window (time) | first, last block | lift band | minutes |",
+            "|---|---|---|---|---|---|---|---|---|"]
     for name, e in data.items():
         if name not in LABELS:
             continue
@@ -55,6 +56,7 @@ def table(data):
         for r in e["orifices"]:
             rows.append(f"| {LABELS[name]} | {r['D0']:g} | {r['rate']:.2f} +- {r['se']:.2f} | "
                         f"{r['rate'] / rho:.2f} | {r['count']} | {r['t0']:g}-{r['t1']:g} | "
+                        f"{r['blocks'][0]:.1f}, {r['blocks'][-1]:.1f} | "
                         f"1-{r.get('band', 3.0):g} | {r['minutes']:.0f} |")
     rows += ["", "| shape | N | fill height H / d | rho_b | orifices | C | k | corr(C, k) | "
              "chi^2 / dof |", "|---|---|---|---|---|---|---|---|---|"]
