@@ -7,12 +7,12 @@
 The fill (in.fill): --N particles poured into a cylinder of radius --R onto a plug, settled
 (the kinetic energy per particle below --ketol m g d) and written to WORK/fill.restart with
 WORK/fill.json (N, the fill height H: the mean centre height of the top layer, its pi R^2
-highest particles, plus d/2; the bulk density rho_b = mass / (pi R^2 H)). Each orifice
+highest particles, plus d/2; the bulk density rho_b = mass / the filled volume). Each orifice
 (in.orifice, from the restart): the plug replaced by the floor with a hole of diameter D0, run
 in chunks of --chunk time; after each chunk the particles that fell below z = -2 are counted
 and lifted back above the pile (at rest, random places in a band 1 to --band d above the fill
-height, clear of the others), so the head stays at H. The cumulative discharged mass against time goes
-to RESULTS/D<D0>.dat, the steady rate over t >= --t0 (tools/containers/discharge.py:
+height, clear of the others; the band grows upwards when it is full), so the head stays at
+H. The cumulative discharged mass against time goes to RESULTS/D<D0>.dat (as it runs), the steady rate over t >= --t0 (tools/containers/discharge.py:
 steady_rate, time blocks for its error) to RESULTS/D<D0>.json. Finished orifices (their json)
 and a finished fill are skipped: the run resumes. Another law (the stiffness check) is
 another --name with its own fill (--fill-law): a settled pile switched to a stiffer law
@@ -122,21 +122,29 @@ def fill(a):
 
 def lift(lmp, band, radius, centre, reach, rng):
     """move the particles below LIFT_BELOW to random places in the z band `band` inside the
-    silo, at rest, each clear (centre distance > reach) of every other; returns the number
-    lifted and their mass (those without room stay below, for the next chunk)"""
+    silo, at rest, each clear (centre distance > reach) of every other (where 200 places in
+    the band are all taken, the band grows upwards by reach, up to the box's top); returns the
+    number lifted and their mass"""
     n, x, m = positions(lmp)
+    ceiling = lmp.extract_box()[1][2] - reach
     v, am = lmp.numpy.extract_atom("v")[:n], lmp.numpy.extract_atom("angmom")[:n]
     fallen = np.flatnonzero(x[:, 2] < LIFT_BELOW)
     near = list(x[x[:, 2] > band[0] - reach])
     count, mass = 0, 0.0
+    top = band[1]
     for i in fallen:
-        for _ in range(200):
-            r = (radius - reach) * math.sqrt(rng.random())
-            phi = 2.0 * math.pi * rng.random()
-            p = np.array([centre + r * math.cos(phi), centre + r * math.sin(phi),
-                          rng.uniform(*band)])
-            if not near or np.min(np.linalg.norm(np.array(near) - p, axis=1)) > reach:
-                break
+        while top <= ceiling:
+            for _ in range(200):
+                r = (radius - reach) * math.sqrt(rng.random())
+                phi = 2.0 * math.pi * rng.random()
+                p = np.array([centre + r * math.cos(phi), centre + r * math.sin(phi),
+                              rng.uniform(band[0], top)])
+                if not near or np.min(np.linalg.norm(np.array(near) - p, axis=1)) > reach:
+                    break
+            else:
+                top += reach
+                continue
+            break
         else:
             continue
         x[i], v[i], am[i] = p, 0.0, 0.0
@@ -163,19 +171,23 @@ def orifice(a, filled, d0):
     steps = max(1, round(a.chunk / a.dt))
     rows, count, mass = [], 0, 0.0
     nchunks = math.ceil((a.t0 + a.T) / a.chunk)
-    for j in range(1, nchunks + 1):
-        lmp.command(f"run {steps}")
-        c, mc = lift(lmp, band, a.R, a.R + 0.5, reach, rng)
-        count, mass = count + c, mass + mc
-        _, x, _ = positions(lmp)
-        pile = x[(x[:, 2] > 0.0) & (x[:, 2] < band[0] - 0.5)]
-        rows.append((j * steps * a.dt, count, mass, fill_height(pile, a.R)))
+    with open(stem + ".dat", "w") as series:    # written as it goes: a stopped run shows it
+        series.write("# t count mass H\n")
+        for j in range(1, nchunks + 1):
+            lmp.command(f"run {steps}")
+            c, mc = lift(lmp, band, a.R, a.R + 0.5, reach, rng)
+            count, mass = count + c, mass + mc
+            _, x, _ = positions(lmp)
+            pile = x[(x[:, 2] > 0.0) & (x[:, 2] < band[0] - 0.5)]
+            rows.append((j * steps * a.dt, count, mass, fill_height(pile, a.R)))
+            series.write("%.8g %d %.8g %.8g\n" % rows[-1])
+            series.flush()
     lmp.close()
     rows = np.array(rows)
-    np.savetxt(stem + ".dat", rows, fmt="%.8g", header="t count mass H")
     out = discharge.steady_rate(rows[:, 0], rows[:, 2], a.t0)
-    out.update(D0=d0, kn=a.kn, K=a.K, dt=a.dt, band=a.band, count=int(count), H_mean=float(rows[:, 3].mean()),
-               H_min=float(rows[:, 3].min()), minutes=(time.time() - start) / 60.0)
+    out.update(D0=d0, kn=a.kn, K=a.K, dt=a.dt, band=a.band, count=int(count),
+               H_mean=float(rows[:, 3].mean()), H_min=float(rows[:, 3].min()),
+               minutes=(time.time() - start) / 60.0)
     json.dump(out, open(stem + ".json", "w"), indent=1)
     print(f"D0 {d0}: W {out['rate']:.4g} +- {out['se']:.2g} ({out['minutes']:.1f} min)",
           flush=True)
