@@ -12,8 +12,9 @@ highest particles, plus d/2; the bulk density rho_b = mass / the filled volume).
 in chunks of --chunk time; after each chunk the particles that fell below z = -2 are counted
 and lifted back above the pile (at rest, random places in a band 1 to --band d above the fill
 height, clear of the others; the band grows upwards when it is full), so the head stays at
-H. The cumulative discharged mass against time goes to RESULTS/D<D0>.dat (as it runs), the steady rate over t >= --t0 (tools/containers/discharge.py:
-steady_rate, time blocks for its error) to RESULTS/D<D0>.json. Finished orifices (their json)
+H. The cumulative discharged mass against time goes to RESULTS/D<D0>.dat (as it runs), the
+steady rate over t >= --t0 (tools/containers/discharge.py: steady_rate, time blocks for its
+error) to RESULTS/D<D0>.json. Finished orifices (their json)
 and a finished fill are skipped: the run resumes. Another law (the stiffness check) is
 another --name with its own fill (--fill-law): a settled pile switched to a stiffer law
 releases its overlaps' energy.
