@@ -54,9 +54,10 @@ fix w all wall/gran/ellipsoid {wall}
 """
 
 
-def spheres_in_box(style, box, positions, radius, density=1.0):
-    """Spheres of one radius at the given positions in a box periodic in x and y (z fixed):
-    LAMMPS's atom_style sphere (style 'sphere') or this package's ellipsoids (any other)."""
+def spheres_in_box(style, box, positions, radius, density=1.0, boundary="p p f"):
+    """Spheres of one radius at the given positions in a box periodic in x and y (z fixed;
+    or `boundary`): LAMMPS's atom_style sphere (style 'sphere') or this package's ellipsoids
+    (any other)."""
     size = (f"diameter {2 * radius}" if style == "sphere"
             else f"shape {2 * radius} {2 * radius} {2 * radius}")
     atoms = "\n".join("create_atoms 1 single {} {} {}".format(*p) for p in positions)
@@ -64,7 +65,7 @@ def spheres_in_box(style, box, positions, radius, density=1.0):
 units lj
 atom_style {style}
 atom_modify map array
-boundary p p f
+boundary {boundary}
 comm_modify vel yes
 region box block 0 {box[0]} 0 {box[1]} 0 {box[2]}
 create_box 1 box

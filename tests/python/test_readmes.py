@@ -3,6 +3,8 @@
 * examples/smoke: the styles `plugin list` (in.smoke) prints are the README's list.
 * examples/silo: the README's table is plot_silo.py's table of the committed results/ (the
   runs' wall tables).
+* examples/discharge: the README's tables are plot_discharge.py's of the committed results/
+  (the rates, Beverloo's C and k, the stiffness check).
 * examples/repose: the README's tables are repose_angle.py's of the committed results/*.json.
 * examples/deposit: the depth numbers (mean particle volume, number-mean diameter, the depth
   at the quoted phi, the smallest N of the default shape) are tools/deposit/deposit_depth.py's.
@@ -52,6 +54,17 @@ def test_silo_table_is_the_committed_data():
     committed = text[start:text.index("\n\n", start)]
     assert committed == plot_silo.table(plot_silo.runs()), \
         "examples/silo/README.md's table differs from its data: print it with plot_silo.py --table"
+
+
+def test_discharge_tables_are_the_committed_data():
+    sys.path.insert(0, os.path.join(ROOT, "examples", "discharge"))
+    import plot_discharge
+    text = readme("discharge")
+    start = text.index("<!-- BEGIN generated: discharge tables -->\n") + len(
+        "<!-- BEGIN generated: discharge tables -->\n")
+    committed = text[start:text.index("<!-- END generated: discharge tables -->")].strip()
+    assert committed == plot_discharge.table(plot_discharge.runs()), \
+        "examples/discharge/README.md's tables differ from the data: plot_discharge.py --table"
 
 
 def test_repose_table_is_the_committed_data():
