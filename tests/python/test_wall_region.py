@@ -157,6 +157,16 @@ def per_atom(lmp, name):
     return np.array(lmp.numpy.extract_atom(name)[: lmp.get_natoms()], dtype=float).copy()
 
 
+def forces_after_one_step(ours, ref, rtol=1e-10):
+    """run 0 and one step on both; their forces agree to rtol (of the largest); returns both"""
+    for lmp in (ours, ref):
+        lmp.command("run 0 post no")
+        lmp.command("run 1 post no")
+    f, f_ref = per_atom(ours, "f"), per_atom(ref, "f")
+    np.testing.assert_allclose(f, f_ref, rtol=rtol, atol=rtol * np.abs(f_ref).max())
+    return f, f_ref
+
+
 def compare(region, positions, extra="", steps=(0, 20, 20, 20), laws=(OURS, LAMMPS)):
     """Forces, torques and positions after each run of `steps` (run 0: the placed spheres);
     returns the largest number of spheres touching a wall at once."""

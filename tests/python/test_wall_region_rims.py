@@ -70,11 +70,7 @@ def test_rim_friction_matches_fix_wall_gran_region(case):
                                                             FRICTION[1]))
     ref = base.build("sphere", region, positions, laws=FRICTION)
     try:
-        for lmp in (ours, ref):
-            lmp.command("run 0 post no")
-            lmp.command("run 1 post no")
-        f, f_ref = base.per_atom(ours, "f"), base.per_atom(ref, "f")
-        np.testing.assert_allclose(f, f_ref, rtol=1e-10, atol=1e-10 * np.abs(f_ref).max())
+        f, f_ref = base.forces_after_one_step(ours, ref, rtol=1e-10)
         rows = np.array(ours.numpy.extract_fix("w", 1, 2)[: len(positions)], dtype=float)
         x = base.per_atom(ours, "x")
         lever = (R + np.linalg.norm(x - rows[:, 4:7], axis=1)) / (2.0 * R)    # (r - d/2)/r
