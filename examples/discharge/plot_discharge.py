@@ -16,7 +16,8 @@ import discharge
 HERE = os.path.dirname(os.path.abspath(__file__))
 RESULTS = os.path.join(HERE, "results")
 LABELS = {"spheres": "spheres", "eta1.4_zeta1.8": "eta 1.4 zeta 1.8",
-          "hopper30_spheres": "spheres, hopper 30 deg"}
+          "hopper30_spheres": "spheres, hopper 30 deg",
+          "eta1.4_zeta1.8_long": "eta 1.4 zeta 1.8, long window"}
 STIFF = "spheres_stiff"    # the stiffness check: spheres at hertz 1e4 200, its own fill
 
 
@@ -105,7 +106,8 @@ def figure(data, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
-    colours = {"spheres": "C0", "eta1.4_zeta1.8": "C3", "hopper30_spheres": "C2"}
+    colours = {"spheres": "C0", "eta1.4_zeta1.8": "C3", "hopper30_spheres": "C2",
+               "eta1.4_zeta1.8_long": "C1"}
     data = {name: e for name, e in data.items() if name in LABELS}
     for name, e in data.items():
         for r in e["orifices"]:
