@@ -29,6 +29,7 @@ from study_doc_figures import cost_block, figures_block  # noqa: E402
 from study_doc_forces import forces_block  # noqa: E402
 from study_doc_paper import claims_block  # noqa: E402
 from study_doc_summary import summary_block  # noqa: E402
+from study_doc_viscous import viscous_rerun_block  # noqa: E402
 from study_stats import Pooled  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -181,7 +182,7 @@ def blocks(data):
             "summary": summary_block(data), "cost": cost_block(data),
             "figures": figures_block(data),
             "forces": forces_block(data), "depth": depth_block(data),
-            "porous": porous_block(data)}
+            "porous": porous_block(data), "viscous_rerun": viscous_rerun_block(data.results)}
 
 
 def render(text, generated):

@@ -1,0 +1,28 @@
+"""doc/study.md's table of the viscous set's re-run (tools/study/study_doc.py): each finished
+re-run deposit (results/viscous_rerun/<point>/s<seed>/packing.dat) beside the same point and
+seed of the study's first run (results/study/points/...), steps, phi and Z."""
+import glob
+import os
+
+from deposit_run import read_packing
+from study_doc_claims import table
+
+
+def thousands(steps):
+    return "{:,}".format(int(steps)).replace(",", " ")
+
+
+def viscous_rerun_block(results):
+    """results: the study's results folder; the re-run's lies beside it"""
+    rerun = os.path.join(os.path.dirname(os.path.normpath(results)), "viscous_rerun")
+    rows = []
+    for path in glob.glob(os.path.join(rerun, "*", "s*", "packing.dat")):
+        point, seed = path.split(os.sep)[-3:-1]
+        new = read_packing(path)
+        old = read_packing(os.path.join(results, "points", point, seed, "packing.dat"))
+        rows.append(((new["eta"], new["zeta"], int(seed[1:])), [
+            "%g" % new["eta"] if new["eta"] == new["zeta"] else "%g, %g" % (new["eta"], new["zeta"]),
+            seed[1:]] + ["%s, %.4f, %.2f" % (thousands(d["steps"]), d["phi"], d["Z"])
+                         for d in (old, new)]))
+    return table(["eta = zeta", "seed", "old: steps, phi, Z", "re-run: steps, phi, Z"],
+                 [r for _, r in sorted(rows)])
