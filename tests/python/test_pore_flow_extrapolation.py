@@ -44,6 +44,13 @@ def test_extrapolation_brackets_every_order_from_two_up():
         assert e["k0"] == pytest.approx(0.5 * (e["k0_fixed_p"] + k[-1]), rel=1e-15)
         assert min(e["k0_fixed_p"], k[-1]) <= 2.0 + 1e-12 and 2.0 <= max(e["k0_fixed_p"], k[-1])
         assert abs(e["k0"] - 2.0) <= e["error"]
+    # an order below 2, outside the bracket's assumption: the fitted p and k0 at it are still
+    # exact, and the line in h^2 stays within k0's error
+    e = extrapolate([1 / 8, 1 / 12, 1 / 16], [2.0 + 5.0 * x ** 1.5 for x in (1 / 8, 1 / 12, 1 / 16)])
+    assert e["p_fitted"] == pytest.approx(1.5, rel=1e-9)
+    assert e["k0_fitted_p"] == pytest.approx(2.0, rel=1e-12)
+    assert e["p_fixed"] == P_FIXED
+    assert abs(e["k0_fixed_p"] - e["k0"]) <= e["error"]
     e2 = extrapolate(h[::-1], [2.0 - 3.0 * x ** 2 for x in h[::-1]])
     assert e2["k0_fixed_p"] == pytest.approx(2.0, rel=1e-12)
     assert e2["fixed_p_standard_error"] == pytest.approx(0.0, abs=1e-12)
