@@ -46,7 +46,8 @@ def test_extrapolation_brackets_every_order_from_two_up():
         assert abs(e["k0"] - 2.0) <= e["error"]
     # an order below 2, outside the bracket's assumption: the fitted p and k0 at it are still
     # exact, and the line in h^2 stays within k0's error
-    e = extrapolate([1 / 8, 1 / 12, 1 / 16], [2.0 + 5.0 * x ** 1.5 for x in (1 / 8, 1 / 12, 1 / 16)])
+    coarse = [1 / 8, 1 / 12, 1 / 16]
+    e = extrapolate(coarse, [2.0 + 5.0 * x ** 1.5 for x in coarse])
     assert e["p_fitted"] == pytest.approx(1.5, rel=1e-9)
     assert e["k0_fitted_p"] == pytest.approx(2.0, rel=1e-12)
     assert e["p_fixed"] == P_FIXED
