@@ -15,22 +15,24 @@ solve is kept in OUT/<folder name>.solves/ as it finishes, so a stopped run resu
 OUT/flow_lines.csv (one row per deposit: eta, zeta, seed, porosity, k_xx, k_zz in d^2 with
 their errors, the anisotropy, the ratio to Kozeny-Carman, the finest voxel's cells, the
 iterations and seconds) and OUT/flow_lines.png (k_xx, k_zz, anisotropy and k_zz / k_KC
-against the aspect ratio, seeds as separate points and their mean).
+against the aspect ratio on each line: the seeds and their mean with its error,
+tools/study/study_flow_lines.py).
 """
 import argparse
 import csv
 import json
+import math
 import os
 import sys
 import time
-
-import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import _paths  # noqa: E402,F401  (tools/_paths.py: the topic folders on sys.path)
 import pore_flow_domain  # noqa: E402
 import pore_surface  # noqa: E402
 import pores  # noqa: E402
+import study_flow_lines  # noqa: E402
+import study_stats  # noqa: E402
 
 
 def solve_folder(folder, out, voxels_per_d, directions, side):
@@ -63,43 +65,48 @@ def solve_folder(folder, out, voxels_per_d, directions, side):
 def table(rows):
     out = []
     for r in rows:
-        k = r["flow"]
-        finest = k["resolutions"][-1]
-        kxx = 0.5 * (k["xx"] + k["yy"]) if "yy" in k else k["xx"]
-        out.append({"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"],
-                    "porosity": r["porosity"],
-                    "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
-                    "k_yy": k.get("yy", ""), "k_zz": k["zz"], "k_zz_error": k.get("zz_error", ""),
-                    "anisotropy": k["anisotropy_xx_zz"],
-                    "anisotropy_error": k.get("anisotropy_xx_zz_error", ""),
-                    "k_zz_over_kozeny_carman": k["zz"] / r["k_kozeny_carman"],
-                    "k_xx_over_kozeny_carman": kxx / r["k_kozeny_carman"],
-                    "voxels_per_d": " ".join("%.3g" % q["voxels_per_d"]
-                                             for q in k["resolutions"]),
+        finest = r["flow"]["resolutions"][-1]
+        row = study_flow_lines.deposit_row(r)
+        row.update({"voxels_per_d": " ".join("%.3g" % q["voxels_per_d"]
+                                             for q in r["flow"]["resolutions"]),
                     "cells_xx": finest["cells"]["xx"], "cells_zz": finest["cells"]["zz"],
                     "iterations": " ".join("%s:%d" % kv
                                            for kv in sorted(finest["iterations"].items())),
                     "seconds": round(r["wall_seconds"])})
+        out.append(row)
     return sorted(out, key=lambda r: (r["eta"], r["zeta"], r["seed"]))
 
 
 def plot(rows, path):
+    """k_xx, k_zz, k_xx / k_zz and k_zz / k_KC against the line's aspect ratio, one colour per
+    line: the seeds (open) and their mean with its error (statistical and extrapolation's
+    combined)"""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     panels = (("k_xx", r"$k_{xx}$ ($d^2$)"), ("k_zz", r"$k_{zz}$ ($d^2$)"),
               ("anisotropy", r"$k_{xx} / k_{zz}$"),
               ("k_zz_over_kozeny_carman", r"$k_{zz} / k_{KC}$"))
+    means = study_flow_lines.shape_means(rows)
     fig, axes = plt.subplots(1, len(panels), figsize=(4.0 * len(panels), 3.4))
-    x = np.array([r["eta"] for r in rows])
     for ax, (key, label) in zip(axes, panels):
-        y = np.array([r[key] for r in rows])
-        ax.plot(x, y, "o", mfc="none", color="C0", label="seeds")
-        etas = sorted(set(x))
-        ax.plot(etas, [y[x == e].mean() for e in etas], "-", color="C0", label="mean")
-        ax.set(xlabel=r"$\eta = \zeta$", ylabel=label)
+        for c, (name, (_, axis)) in enumerate(study_stats.LINES.items()):
+            i = 1 if axis == "zeta" else 0
+            shapes = sorted((s for s in means if s != "pooled" and study_stats.on_line(name, *s)),
+                            key=lambda s: s[i])
+            if len(shapes) < 2:
+                continue
+            seeds = [r for r in rows if study_stats.on_line(name, r["eta"], r["zeta"])]
+            ax.plot([r[("eta", "zeta")[i]] for r in seeds], [r[key] for r in seeds], "o",
+                    mfc="none", ms=4, color="C%d" % c)
+            err = [math.hypot(means[s][key]["stat"] or 0.0, means[s][key]["sys"] or 0.0)
+                   for s in shapes]
+            ax.errorbar([s[i] for s in shapes], [means[s][key]["mean"] for s in shapes], err,
+                        fmt="-", capsize=3, color="C%d" % c,
+                        label="%s (x: %s)" % (name, "zeta" if i else "eta"))
+        ax.set(xlabel="aspect ratio on the line", ylabel=label)
         ax.legend(fontsize=7)
-    fig.suptitle("flow solve (OpenFOAM simpleFoam), voxels d/%s, diagonal, delta_r = 0"
+    fig.suptitle("flow solve (OpenFOAM simpleFoam), voxels d/%s extrapolated, delta_r = 0"
                  % rows[0]["voxels_per_d"].replace(" ", ", d/"), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)

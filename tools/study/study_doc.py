@@ -26,6 +26,7 @@ from study_claims import Selection, load_deposits  # noqa: E402
 from study_doc_claims import pm, table, verdicts_block  # noqa: E402
 from study_doc_depth import depth_block, matched_answer  # noqa: E402
 from study_doc_figures import cost_block, figures_block  # noqa: E402
+from study_doc_flow import flow_lines_block  # noqa: E402
 from study_doc_forces import forces_block  # noqa: E402
 from study_doc_paper import claims_block  # noqa: E402
 from study_doc_summary import summary_block  # noqa: E402
@@ -182,7 +183,8 @@ def blocks(data):
             "summary": summary_block(data), "cost": cost_block(data),
             "figures": figures_block(data),
             "forces": forces_block(data), "depth": depth_block(data),
-            "porous": porous_block(data), "viscous_rerun": viscous_rerun_block(data.results)}
+            "porous": porous_block(data), "viscous_rerun": viscous_rerun_block(data.results),
+            "flow_lines": flow_lines_block(data.results)}
 
 
 def render(text, generated):

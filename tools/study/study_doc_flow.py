@@ -1,0 +1,70 @@
+"""doc/study.md's permeability along the lines (tools/study/study_doc.py): the flow solve at the
+defaults per shape (seeds' mean, statistical +- extrapolation error) and the verdicts
+(study_flow_lines.py), from results/flow_lines/<run>.json beside the study's results."""
+import glob
+import json
+import os
+
+import numpy as np
+
+from study_doc_claims import pm, table, z_cell
+from study_flow_lines import QUANTITIES, deposit_row, line_of, shape_means, verdicts
+from study_stats import LINES
+
+PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
+NAMES = {"k_zz": "k_zz", "k_xx": "k_xx", "anisotropy": "k_xx / k_zz",
+         "k_zz_over_kozeny_carman": "k_zz / k_KC"}
+SCALE = {"k_zz": 1e-4, "k_xx": 1e-4, "anisotropy": 1.0, "k_zz_over_kozeny_carman": 1.0}
+
+
+def load_rows(folder):
+    rows = []
+    for path in sorted(glob.glob(os.path.join(folder, "*.json"))):
+        with open(path) as f:
+            r = json.load(f)
+        if "flow" in r and "extrapolation" in r["flow"]:    # solved at three voxels or more
+            rows.append(deposit_row(r))
+    return rows
+
+
+def value_cell(m, q):
+    """mean +- statistical +- extrapolation error, in SCALE's units"""
+    scale = SCALE[q]
+    text = pm(m["mean"] / scale, m["stat"] and m["stat"] / scale, 2)
+    return text + (" +- %.2f" % (m["sys"] / scale) if m["sys"] is not None else "")
+
+
+def shape_text(s):
+    return "spheres" if s == (1.0, 1.0) else "%g, %g" % s
+
+
+def flow_lines_block(results):
+    """results: the study's results folder; the flow solves' lie beside it"""
+    rows = load_rows(os.path.join(os.path.dirname(os.path.normpath(results)), "flow_lines"))
+    if not rows:
+        return "No deposit solved at the defaults yet."
+    means = shape_means(rows)
+    shapes = sorted((s for s in means if s != "pooled"),
+                    key=lambda s: (s != (1.0, 1.0), line_of(s), s))
+    pooled = ", ".join("%s %s" % (NAMES[q], "unknown" if sd is None else
+                                  "%.1f %% (%d dof)" % (100 * sd, dof))
+                       for q, (sd, dof) in means["pooled"].items())
+    head = ("Deposits solved: %d of the %d planned (2 seeds at each of %d shapes). The seeds' "
+            "relative SD, pooled over the shapes: %s." % (len(rows), PLANNED, PLANNED // 2,
+                                                        pooled))
+    values = table(["eta, zeta", "line", "seeds", "porosity"]
+                   + ["%s%s" % (NAMES[q], " (1e-4 d^2)" if SCALE[q] != 1.0 else "")
+                      for q in QUANTITIES],
+                   [[shape_text(s), ", ".join(line_of(s)) if s != (1.0, 1.0) else "all",
+                     ",".join("%d" % n for n in means[s]["seeds"]),
+                     "%.4f" % np.mean([r["porosity"] for r in rows
+                                       if (r["eta"], r["zeta"]) == s])]
+                    + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
+    decided = table(["eta, zeta", "quantity", "against", "difference", "z", "verdict"],
+                    [[shape_text(s), NAMES[q], QUANTITIES[q][1],
+                      "%+.3g" % (d["difference"] / SCALE[q]) + (" e-4 d^2" if SCALE[q] != 1.0
+                                                               else ""),
+                      z_cell(d), d["verdict"]]
+                     for s, q, d in sorted(verdicts(means), key=lambda v: (v[1], v[0]))])
+    return head + "\n\n" + values + "\n\n" + decided
+
