@@ -36,20 +36,31 @@ def runs():
     return out
 
 
+def steady(e):
+    """the orifices whose rate is steady over the window (no trend in its time blocks)"""
+    return [r for r in e["orifices"] if discharge.block_trend(r["blocks"])["steady"]]
+
+
 def fits(data):
-    """Beverloo's fit per shape with >= 3 orifices in the flat floor"""
-    return {name: discharge.fit_beverloo([r["D0"] for r in e["orifices"]],
-                                         [r["rate"] for r in e["orifices"]],
-                                         [r["se"] for r in e["orifices"]], e["fill"]["rho_b"])
+    """Beverloo's fit per shape with >= 3 steady orifices in the flat floor"""
+    return {name: discharge.fit_beverloo([r["D0"] for r in steady(e)],
+                                         [r["rate"] for r in steady(e)],
+                                         [r["se"] for r in steady(e)], e["fill"]["rho_b"])
             for name, e in data.items()
-            if name in LABELS and len(e["orifices"]) >= 3 and e["fill"].get("angle", 0) == 0}
+            if name in LABELS and len(steady(e)) >= 3 and e["fill"].get("angle", 0) == 0}
+
+
+def trend_text(blocks):
+    t = discharge.block_trend(blocks)
+    return f"{100 * t['rise']:+.0f} % (p {t['p']:.2g}){'' if t['steady'] else ', not steady'}"
 
 
 def table(data):
     """the README's tables: the rates per orifice, then the fits and the stiffness check"""
     rows = ["| shape | D0 / d | W (mass / time) | W / (rho_b sqrt(g) d^(5/2)) | particles "
-            "out (all) | window (time) | first, last block | lift band | minutes |",
-            "|---|---|---|---|---|---|---|---|---|"]
+            "out (all) | window (time) | first, last block | trend across the window (p) | "
+            "lift band | minutes |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
     for name, e in data.items():
         if name not in LABELS:
             continue
@@ -58,14 +69,17 @@ def table(data):
             rows.append(f"| {LABELS[name]} | {r['D0']:g} | {r['rate']:.2f} +- {r['se']:.2f} | "
                         f"{r['rate'] / rho:.2f} | {r['count']} | {r['t0']:g}-{r['t1']:g} | "
                         f"{r['blocks'][0]:.1f}, {r['blocks'][-1]:.1f} | "
+                        f"{trend_text(r['blocks'])} | "
                         f"1-{r.get('band', 3.0):g} | {r['minutes']:.0f} |")
-    rows += ["", "| shape | N | fill height H / d | rho_b | orifices | C | k | corr(C, k) | "
+    rows += ["", "| shape | N | fill height H / d | rho_b | steady orifices fitted (D0 / d) | C | "
+             "k | corr(C, k) | "
              "chi^2 / dof |", "|---|---|---|---|---|---|---|---|---|"]
     fitted = fits(data)
     for name, f in fitted.items():
         e = data[name]
         rows.append(f"| {LABELS[name]} | {e['fill']['N']} | {e['fill']['H']:.1f} | "
-                    f"{e['fill']['rho_b']:.3f} | {len(e['orifices'])} | "
+                    f"{e['fill']['rho_b']:.3f} | "
+                    f"{', '.join('%g' % r['D0'] for r in steady(e))} | "
                     f"{f['C']:.3f} +- {f['dC']:.3f} | {f['k']:.2f} +- {f['dk']:.2f} | "
                     f"{f['corr']:.2f} | {f['chi2']:.1f} / {f['dof']} |")
     if STIFF in data and "spheres" in fitted:
@@ -75,7 +89,8 @@ def table(data):
         scale = e["fill"]["rho_b"] / data[STIFF]["fill"]["rho_b"]
         rows.append(f"| spheres, rho_b of the hertz 1e4 fill | {e['fill']['N']} | "
                     f"{data[STIFF]['fill']['H']:.1f} | {data[STIFF]['fill']['rho_b']:.3f} | "
-                    f"{len(e['orifices'])} | {f['C'] * scale:.3f} +- {f['dC'] * scale:.3f} | "
+                    f"{', '.join('%g' % r['D0'] for r in steady(e))} | "
+                    f"{f['C'] * scale:.3f} +- {f['dC'] * scale:.3f} | "
                     f"{f['k']:.2f} +- {f['dk']:.2f} | {f['corr']:.2f} | {f['chi2']:.1f} / "
                     f"{f['dof']} |")
     if STIFF in data and "spheres" in data:
@@ -124,9 +139,12 @@ def figure(data, path):
         d0 = np.array([r["D0"] for r in e["orifices"]])
         w = np.array([r["rate"] for r in e["orifices"]])
         se = np.array([r["se"] for r in e["orifices"]])
-        if len(d0):
-            ax2.errorbar(d0, w ** 0.4, yerr=0.4 * w ** -0.6 * se, fmt="o",
-                         color=colours[name], label=LABELS[name])
+        ok = np.array([discharge.block_trend(r["blocks"])["steady"] for r in e["orifices"]])
+        for mask, face, label in ((ok, colours[name], LABELS[name]),
+                                  (~ok, "none", LABELS[name] + ": not steady, not fitted")):
+            if mask.any():
+                ax2.errorbar(d0[mask], w[mask] ** 0.4, yerr=0.4 * w[mask] ** -0.6 * se[mask],
+                             fmt="o", mfc=face, color=colours[name], label=label)
         if name in fitted:
             f = fitted[name]
             x = np.linspace(f["k"], d0.max() + 0.5, 50)
@@ -139,7 +157,7 @@ def figure(data, path):
                      lw=1, label="Beverloo: C 0.58, k 1.5 (spheres' rho_b)")
     ax2.set(xlabel="D0 / d", ylabel="W^(2/5)", xlim=(0, None), ylim=(0, None),
             title="Beverloo: W = C rho_b sqrt(g) (D0 - k d)^(5/2)")
-    ax2.legend(fontsize=8)
+    ax2.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 

@@ -4,7 +4,8 @@
   noise, within their standard errors (and the errors about right) with noise, over many
   synthetic sets.
 * The steady rate of a discharged-mass series with a start-up transient and noise is the
-  known rate, its block standard error about the scatter of the rate over many series.
+  known rate, its block standard error about the scatter of the rate over many series; a
+  drifting rate is flagged by its blocks' trend, a steady one at the test's 5 %.
 * A small silo (in.fill, then in.orifice through run_discharge.py): the particles fall through
   an orifice of 3.5 d and are lifted back, none lost, the rate positive.
 """
@@ -73,6 +74,19 @@ def test_steady_rate_recovers_the_rate():
     assert exact["rate"] == pytest.approx(3.0) and exact["se"] < 1e-12
     with pytest.raises(ValueError, match="blocks"):
         discharge.steady_rate(t[:8], t[:8], 0.0)
+
+
+def test_block_trend_flags_a_drifting_rate():
+    """a rate that doubles through the window is flagged, its rise exact without noise; a
+    constant rate with noise is flagged in about STEADY_P of 400 windows"""
+    ramp = discharge.block_trend([2.0, 2.5, 3.0, 3.5, 4.0])
+    assert ramp["rise"] == pytest.approx(2.0 / 3.0, rel=1e-12)
+    assert ramp["p"] < 1e-6 and not ramp["steady"]
+    assert discharge.block_trend([3.0] * 5) == {"rise": 0.0, "p": 1.0, "steady": True}
+    rng = np.random.default_rng(3)
+    flagged = np.mean([not discharge.block_trend(3.0 + rng.normal(0, 0.3, 5))["steady"]
+                       for _ in range(400)])
+    assert 0.02 < flagged < 0.09    # 0.05 +- 3 binomial errors (0.011)
 
 
 def test_small_silo_discharges(tmp_path):
