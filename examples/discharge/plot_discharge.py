@@ -157,7 +157,7 @@ def figure(data, path):
                      lw=1, label="Beverloo: C 0.58, k 1.5 (spheres' rho_b)")
     ax2.set(xlabel="D0 / d", ylabel="W^(2/5)", xlim=(0, None), ylim=(0, None),
             title="Beverloo: W = C rho_b sqrt(g) (D0 - k d)^(5/2)")
-    ax2.legend(fontsize=7, loc="lower right")
+    ax2.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
