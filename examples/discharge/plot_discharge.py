@@ -52,6 +52,8 @@ def fits(data):
 
 def trend_text(blocks):
     t = discharge.block_trend(blocks)
+    if t["rise"] is None:
+        return "no flow, not steady"
     return f"{100 * t['rise']:+.0f} % (p {t['p']:.2g}){'' if t['steady'] else ', not steady'}"
 
 

@@ -15,7 +15,8 @@ height, clear of the others; the band grows upwards when it is full), so the hea
 H. The cumulative discharged mass against time goes to RESULTS/D<D0>.dat (as it runs), the
 steady rate over t >= --t0 (tools/containers/discharge.py: steady_rate, time blocks for its
 error) to RESULTS/D<D0>.json. Finished orifices (their json)
-and a finished fill are skipped: the run resumes. Another law (the stiffness check) is
+and a finished fill are skipped: the run resumes; --reanalyse computes the finished orifices'
+rates again over t >= --t0 from their series. Another law (the stiffness check) is
 another --name with its own fill (--fill-law): a settled pile switched to a stiffer law
 releases its overlaps' energy.
 """
@@ -56,6 +57,9 @@ def parse_args(argv=None):
     p.add_argument("--ketol", type=float, default=1e-3)
     p.add_argument("--band", type=float, default=3.0,
                    help="the lifted particles go 1 to BAND d above the fill height")
+    p.add_argument("--reanalyse", action="store_true",
+                   help="run nothing: the steady rate of every finished orifice again from its "
+                        "series, over t >= --t0")
     p.add_argument("--angle", type=float, default=0.0,
                    help="a conical hopper's half-angle (degrees; 0: the flat floor); its "
                         "outlet is the one --D0, given to the fill")
@@ -194,8 +198,24 @@ def orifice(a, filled, d0):
           flush=True)
 
 
+def reanalyse(a):
+    """each finished orifice's steady rate again from its series over t >= a.t0"""
+    for d0 in a.D0:
+        stem = os.path.join(a.results, "D%g" % d0)
+        with open(stem + ".json") as f:
+            out = json.load(f)
+        t, mass = np.loadtxt(stem + ".dat", usecols=(0, 2), unpack=True)
+        out.update(discharge.steady_rate(t, mass, a.t0))
+        json.dump(out, open(stem + ".json", "w"), indent=1)
+        print(f"D0 {d0}: W {out['rate']:.4g} +- {out['se']:.2g} over {out['t0']:g}-"
+              f"{out['t1']:g}", flush=True)
+
+
 def main(argv=None):
     a = parse_args(argv)
+    if a.reanalyse:
+        reanalyse(a)
+        return
     os.makedirs(a.results, exist_ok=True)
     os.makedirs(a.work, exist_ok=True)
     filled = fill(a)

@@ -77,14 +77,21 @@ def test_steady_rate_recovers_the_rate():
 
 
 def test_block_trend_flags_a_drifting_rate():
-    """a rate that doubles through the window is flagged, its rise exact without noise; a
-    constant rate with noise is flagged in about STEADY_P of 400 windows"""
+    """a rate that doubles through the window is flagged, its rise exact without noise; so is a
+    large rise the p test misses, and no flow; a constant rate with 5 % noise per block (the
+    rise's SD 6 %, so the size bound hardly acts) is flagged in about STEADY_P of 400 windows;
+    noisier windows are flagged more often: too noisy to show that they are steady"""
     ramp = discharge.block_trend([2.0, 2.5, 3.0, 3.5, 4.0])
     assert ramp["rise"] == pytest.approx(2.0 / 3.0, rel=1e-12)
     assert ramp["p"] < 1e-6 and not ramp["steady"]
     assert discharge.block_trend([3.0] * 5) == {"rise": 0.0, "p": 1.0, "steady": True}
+    # +50 % across the window, too noisy for the p test: not steady by its size
+    noisy = discharge.block_trend([2.0, 3.5, 2.4, 3.8, 3.0])
+    assert noisy["p"] > discharge.STEADY_P and noisy["rise"] > discharge.STEADY_RISE
+    assert not noisy["steady"]
+    assert not discharge.block_trend([0.0] * 5)["steady"]    # a clogged orifice
     rng = np.random.default_rng(3)
-    flagged = np.mean([not discharge.block_trend(3.0 + rng.normal(0, 0.3, 5))["steady"]
+    flagged = np.mean([not discharge.block_trend(3.0 + rng.normal(0, 0.15, 5))["steady"]
                        for _ in range(400)])
     assert 0.02 < flagged < 0.09    # 0.05 +- 3 binomial errors (0.011)
 

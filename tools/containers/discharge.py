@@ -17,6 +17,9 @@ import numpy as np
 from scipy import stats
 
 STEADY_P = 0.05    # a window whose blocks' trend has a smaller p is not a steady rate
+# nor is one whose trend changes the rate by more than this across it, whatever its p: five
+# blocks detect a drift only when it is several times the blocks' scatter
+STEADY_RISE = 0.2
 
 
 def steady_rate(t, mass, t0, blocks=5):
@@ -44,13 +47,17 @@ def block_trend(rates):
     """Whether the blocks' rates drift through the window: the least-squares line of the rate
     against the block's index, its change across the window relative to the mean rate
     ("rise"), and the two-sided p of its slope (Student's t with blocks - 2 degrees of
-    freedom; "steady": p >= STEADY_P). Five blocks detect a drift of about the blocks' scatter;
-    at 5 % one steady window in twenty is flagged by chance."""
+    freedom). Steady: p >= STEADY_P and abs(rise) <= STEADY_RISE (at 5 % one steady window in
+    twenty fails by chance; the test alone catches a drift of 3 blocks' SDs across the window
+    in about a third of the windows, hence the bound on its size). A window without flow
+    (a clogged orifice) is not steady."""
     rates = np.asarray(rates, dtype=float)
+    if not rates.mean() > 0:
+        return {"rise": None, "p": None, "steady": False}
     fit = stats.linregress(np.arange(len(rates)), rates)
     p = float(fit.pvalue) if fit.stderr > 0 else (1.0 if fit.slope == 0 else 0.0)
-    return {"rise": float(fit.slope * (len(rates) - 1) / rates.mean()), "p": p,
-            "steady": p >= STEADY_P}
+    rise = float(fit.slope * (len(rates) - 1) / rates.mean())
+    return {"rise": rise, "p": p, "steady": p >= STEADY_P and abs(rise) <= STEADY_RISE}
 
 
 def beverloo(d0, c, k, rho_b, d=1.0, g=1.0):
