@@ -96,6 +96,22 @@ def test_block_trend_flags_a_drifting_rate():
     assert 0.02 < flagged < 0.09    # 0.05 +- 3 binomial errors (0.011)
 
 
+def test_only_steady_orifices_are_fitted():
+    """examples/discharge/plot_discharge.py fits Beverloo's law to the steady windows only: an
+    orifice whose blocks rise is left out, and fewer than three steady ones give no fit"""
+    import plot_discharge
+    rate = discharge.beverloo(D0[:4], C, K, RHO_B)
+    orifices = [{"D0": d, "rate": w, "se": 0.02 * w, "blocks": [w] * 5}
+                for d, w in zip(D0[:4], rate)]
+    orifices[1]["rate"] *= 0.7
+    orifices[1]["blocks"] = list(orifices[1]["rate"] * np.linspace(0.6, 1.4, 5))
+    fill = {"rho_b": RHO_B, "N": 1, "H": 1.0}
+    fit = plot_discharge.fits({"spheres": {"fill": fill, "orifices": orifices}})["spheres"]
+    assert (fit["C"], fit["k"], fit["dof"]) == (pytest.approx(C), pytest.approx(K), 1)
+    orifices[2]["blocks"] = [0.0] * 5    # clogged
+    assert plot_discharge.fits({"spheres": {"fill": fill, "orifices": orifices}}) == {}
+
+
 def test_small_silo_discharges(tmp_path):
     a = run_discharge.parse_args(["--name", "test", "--N", "300", "--R", "3", "--D0", "3.5",
                                   "--t0", "1", "--T", "3", "--chunk", "0.25"])
