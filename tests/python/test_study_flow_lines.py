@@ -8,19 +8,27 @@ import pytest
 from study_flow_lines import deposit_row, shape_means, verdicts
 
 
+def bracket(k, err):
+    """an extrapolation whose bracket has the half-width err * k around k"""
+    return {"k0_fixed_p": k * (1 - err), "k_finest": k * (1 + err)}
+
+
 def row(eta, zeta, seed, k_zz, k_xx, err=0.01, kc=1.0e-3):
-    """a deposit's json as pore_flow_lines.py writes it, relative extrapolation errors err"""
+    """a deposit's json as pore_flow_lines.py writes it: relative half-widths err, and total
+    errors (half-width and standard errors) twice that"""
+    a = k_xx / k_zz
     return deposit_row({
         "eta": eta, "zeta": zeta, "seed": seed, "porosity": 0.4, "k_kozeny_carman": kc,
-        "flow": {"xx": k_xx, "xx_error": err * k_xx, "zz": k_zz, "zz_error": err * k_zz,
-                 "anisotropy_xx_zz": k_xx / k_zz,
-                 "anisotropy_xx_zz_error": err * k_xx / k_zz}})
+        "flow": {"xx": k_xx, "xx_error": 2 * err * k_xx, "zz": k_zz, "zz_error": 2 * err * k_zz,
+                 "anisotropy_xx_zz": a, "anisotropy_xx_zz_error": 2 * err * a,
+                 "extrapolation": {"xx": bracket(k_xx, err), "zz": bracket(k_zz, err),
+                                   "anisotropy_xx_zz": bracket(a, err)}}})
 
 
 ROWS = [row(1, 1, 4, 1.00e-3, 1.00e-3), row(1, 1, 6, 1.02e-3, 1.02e-3),
         row(2, 2, 1, 1.60e-3, 1.92e-3), row(2, 2, 2, 1.64e-3, 1.968e-3),
         row(3, 1, 1, 1.10e-3, 1.10e-3), row(3, 1, 2, 1.12e-3, 1.12e-3),
-        row(1, 3, 1, 1.01e-3, 1.01e-3, err=0.03)]
+        row(1, 3, 1, 1.05e-3, 1.05e-3, err=0.03)]
 
 
 def test_the_errors_of_a_shape_mean():
@@ -28,33 +36,55 @@ def test_the_errors_of_a_shape_mean():
     # relative deviations from each shape's mean: +-0.01/1.01, +-0.02/1.62, +-0.01/1.11
     rel = [0.01 / 1.01, 0.02 / 1.62, 0.01 / 1.11]
     sd = math.sqrt(sum(2 * x * x for x in rel) / 3)    # 3 dof, the single seed adds none
-    assert means["pooled"]["k_zz"] == (pytest.approx(sd, rel=1e-12), 3)
+    # every group of the study's pooling has fewer than 4 dof: one pool of all shapes
+    assert means["pooled"]["k_zz"] == {"all": (pytest.approx(sd, rel=1e-12), 3)}
     m = means[(2.0, 2.0)]["k_zz"]
     assert m["mean"] == pytest.approx(1.62e-3, rel=1e-12)
     assert m["stat"] == pytest.approx(1.62e-3 * sd / math.sqrt(2), rel=1e-12)
     assert m["sys"] == pytest.approx(0.01 * 1.62e-3, rel=1e-12)
     one = means[(1.0, 3.0)]["k_zz"]    # one seed: the pooled SD alone, its own 3 %
-    assert one["stat"] == pytest.approx(1.01e-3 * sd, rel=1e-12)
-    assert one["sys"] == pytest.approx(0.03 * 1.01e-3, rel=1e-12)
+    assert one["stat"] == pytest.approx(1.05e-3 * sd, rel=1e-12)
+    assert one["sys"] == pytest.approx(0.03 * 1.05e-3, rel=1e-12)
     assert means[(1.0, 1.0)]["k_zz_over_kozeny_carman"]["mean"] == pytest.approx(1.01)
+
+
+def sd_by_hand():
+    rel = [0.01 / 1.01, 0.02 / 1.62, 0.01 / 1.11]
+    return math.sqrt(sum(2 * x * x for x in rel) / 3)
 
 
 def test_verdicts_against_the_spheres_and_isotropy():
     v = {(s, q): d for s, q, d in verdicts(shape_means(ROWS))}
     high = v[((2.0, 2.0), "k_zz")]
-    means = shape_means(ROWS)
-    stat = math.hypot(means[(2.0, 2.0)]["k_zz"]["stat"], means[(1.0, 1.0)]["k_zz"]["stat"])
+    sd = sd_by_hand()
+    stat = math.hypot(1.62e-3 * sd, 1.01e-3 * sd) / math.sqrt(2)
     sys = math.hypot(0.01 * 1.62e-3, 0.01 * 1.01e-3)
     assert high["z"] == pytest.approx(0.61e-3 / math.hypot(stat, sys), rel=1e-12)
     assert high["dof"] == 3 and high["z_equivalent"] >= 3    # Student's t with 3 dof
     assert high["verdict"] == "higher than the spheres'"
     # 10 % above the spheres with 1-2 % errors: z about 4.5, not 3 sigma at t with 3 dof
     assert v[((3.0, 1.0), "k_zz")]["verdict"].startswith("undecided")
+    # one seed 4 % above the spheres, its bias 3 %: z by hand, undecided
+    lone = v[((1.0, 3.0), "k_zz")]
+    stat = math.hypot(1.05e-3 * sd, 1.01e-3 * sd / math.sqrt(2))
+    assert lone["z"] == pytest.approx(0.04e-3 / math.hypot(
+        stat, math.hypot(0.03 * 1.05e-3, 0.01 * 1.01e-3)), rel=1e-12)
+    assert lone["verdict"].startswith("undecided at 1-2 seeds")
     assert v[((1.0, 3.0), "k_zz")]["verdict"].startswith("undecided")
     # k_xx / k_zz = 1.2 at (2, 2): against 1, not against the spheres
     assert v[((2.0, 2.0), "anisotropy")]["verdict"] == "k_xx > k_zz"
     assert v[((1.0, 1.0), "anisotropy")]["verdict"].startswith("undecided")
     assert ((1.0, 1.0), "k_zz") not in v
+
+
+def test_without_an_error_estimate_undecided():
+    """one seed per shape (no scatter to pool) or no bracket (one voxel): no verdict"""
+    single = [ROWS[0], ROWS[2]]
+    assert all(d["verdict"] == "undecided: no error estimate"
+               for _, _, d in verdicts(shape_means(single)))
+    one_voxel = [dict(r, k_zz_bias="", k_xx_bias="", anisotropy_bias="") for r in ROWS]
+    assert all(d["verdict"] == "undecided: no error estimate"
+               for _, _, d in verdicts(shape_means(one_voxel)))
 
 
 def test_without_spheres_no_comparison_with_them():

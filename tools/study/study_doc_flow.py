@@ -28,7 +28,7 @@ def load_rows(folder):
 
 
 def value_cell(m, q):
-    """mean +- statistical +- extrapolation error, in SCALE's units"""
+    """mean +- statistical error +- extrapolation bias, in SCALE's units"""
     scale = SCALE[q]
     text = pm(m["mean"] / scale, m["stat"] and m["stat"] / scale, 2)
     return text + (" +- %.2f" % (m["sys"] / scale) if m["sys"] is not None else "")
@@ -46,11 +46,11 @@ def flow_lines_block(results):
     means = shape_means(rows)
     shapes = sorted((s for s in means if s != "pooled"),
                     key=lambda s: (s != (1.0, 1.0), line_of(s), s))
-    pooled = ", ".join("%s %s" % (NAMES[q], "unknown" if sd is None else
-                                  "%.1f %% (%d dof)" % (100 * sd, dof))
-                       for q, (sd, dof) in means["pooled"].items())
+    pooled = "; ".join("%s: %s" % (NAMES[q], ", ".join(
+        "%s %s" % (g, "unknown" if sd is None else "%.1f %% (%d dof)" % (100 * sd, dof))
+        for g, (sd, dof) in sorted(groups.items()))) for q, groups in means["pooled"].items())
     head = ("Deposits solved: %d of the %d planned (2 seeds at each of %d shapes). The seeds' "
-            "relative SD, pooled over the shapes: %s." % (len(rows), PLANNED, PLANNED // 2,
+            "relative SD, pooled per group of shapes: %s." % (len(rows), PLANNED, PLANNED // 2,
                                                         pooled))
     values = table(["eta, zeta", "line", "seeds", "porosity"]
                    + ["%s%s" % (NAMES[q], " (1e-4 d^2)" if SCALE[q] != 1.0 else "")
@@ -62,8 +62,7 @@ def flow_lines_block(results):
                     + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
     decided = table(["eta, zeta", "quantity", "against", "difference", "z", "verdict"],
                     [[shape_text(s), NAMES[q], QUANTITIES[q][1],
-                      "%+.3g" % (d["difference"] / SCALE[q]) + (" e-4 d^2" if SCALE[q] != 1.0
-                                                               else ""),
+                      ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
                       z_cell(d), d["verdict"]]
                      for s, q, d in sorted(verdicts(means), key=lambda v: (v[1], v[0]))])
     return head + "\n\n" + values + "\n\n" + decided

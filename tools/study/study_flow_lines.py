@@ -7,54 +7,58 @@ deposit).
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
 
 Errors. A deposit's k carries the error of the extrapolation to a vanishing voxel
-(tools/pores/pore_flow_fit.py); the seeds scatter beyond it (each deposit is one 5 d box, so
-the box's sampling error is part of that scatter). A shape's mean has a statistical error,
-the seeds' relative SD pooled over every shape with two seeds or more (study_stats.pool) /
-sqrt(seeds), and a systematic one, the rms of its deposits' relative extrapolation errors,
-not reduced by averaging (the voxel error is a bias the seeds share). A verdict needs SIGMA
-standard errors of the two combined, the statistical part taken as Student's t with the pooled
-SD's degrees of freedom (study_stats.decide).
+(tools/pores/pore_flow_fit.py): the bracket's half-width (where in the bracket the limit lies,
+a bias the seeds of a shape share) plus the line's and the offsets' standard errors (noise of
+each deposit, like the box's sampling: part of the seeds' scatter). A shape's mean has a
+statistical error, the seeds' relative SD pooled per group of shapes as the study pools
+(study_stats.pooled_groups) / sqrt(seeds), and a systematic one, the rms of its deposits'
+relative half-widths, not reduced by averaging. A verdict needs SIGMA standard errors of the
+two combined, as the normal equivalent of Student's t with the pooled SD's degrees of freedom
+(study_stats.decide); without an error estimate it is undecided.
 """
 import math
 
 import numpy as np
 
-from study_stats import LINES, decide, on_line, pool, seeds_needed, significance
+from study_stats import LINES, decide, on_line, pooled_groups, seeds_needed, significance
 
-# quantity: (the deposit's error of it, what the verdict compares it with)
-QUANTITIES = {"k_zz": ("k_zz_error", "spheres"), "k_xx": ("k_xx_error", "spheres"),
-              "anisotropy": ("anisotropy_error", "isotropy"),
-              "k_zz_over_kozeny_carman": ("k_zz_error", "spheres")}
+# quantity: (the deposit's bias of it, what the verdict compares it with)
+QUANTITIES = {"k_zz": ("k_zz_bias", "spheres"), "k_xx": ("k_xx_bias", "spheres"),
+              "anisotropy": ("anisotropy_bias", "isotropy"),
+              "k_zz_over_kozeny_carman": ("k_zz_bias", "spheres")}
+EXTRAPOLATED = {"k_xx": "xx", "k_zz": "zz", "anisotropy": "anisotropy_xx_zz"}
 SPHERES = (1.0, 1.0)
 
 
 def deposit_row(r):
     """one deposit's row from pore_flow_lines.py's json: k in d^2, each with its error"""
     k = r["flow"]
-    kxx = 0.5 * (k["xx"] + k["yy"]) if "yy" in k else k["xx"]
-    return {"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"], "porosity": r["porosity"],
-            "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
-            "k_yy": k.get("yy", ""), "k_zz": k["zz"], "k_zz_error": k.get("zz_error", ""),
-            "anisotropy": k["anisotropy_xx_zz"],
-            "anisotropy_error": k.get("anisotropy_xx_zz_error", ""),
-            "k_zz_over_kozeny_carman": k["zz"] / r["k_kozeny_carman"],
-            "k_xx_over_kozeny_carman": kxx / r["k_kozeny_carman"]}
+    row = {"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"], "porosity": r["porosity"],
+           "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
+           "k_yy": k.get("yy", ""), "k_zz": k["zz"], "k_zz_error": k.get("zz_error", ""),
+           "anisotropy": k["anisotropy_xx_zz"],
+           "anisotropy_error": k.get("anisotropy_xx_zz_error", ""),
+           "k_zz_over_kozeny_carman": k["zz"] / r["k_kozeny_carman"],
+           "k_xx_over_kozeny_carman": k["xx"] / r["k_kozeny_carman"]}
+    for q, key in EXTRAPOLATED.items():    # the bracket's half-width
+        e = k.get("extrapolation", {}).get(key)
+        row[q + "_bias"] = "" if e is None else 0.5 * abs(e["k0_fixed_p"] - e["k_finest"])
+    return row
 
 
-def relative_error(row, q):
-    """the deposit's extrapolation error of q relative to its value (None: one voxel only)"""
-    error_key = QUANTITIES[q][0]
-    err = row.get(error_key)
-    if err in ("", None):
+def relative_bias(row, q):
+    """the deposit's extrapolation bias of q relative to its value (None: one voxel only)"""
+    bias_key = QUANTITIES[q][0]
+    bias = row.get(bias_key)
+    if bias in ("", None):
         return None
-    base = "anisotropy" if q == "anisotropy" else error_key[:-len("_error")]
-    return float(err) / float(row[base])
+    return float(bias) / float(row[bias_key[:-len("_bias")]])
 
 
 def shape_means(rows):
-    """{(eta, zeta): {"seeds": [...], q: {mean, stat, sys}}, "pooled": {q: (sd, dof)}}: stat
-    the seeds' standard error (relative SD pooled over the shapes), sys the rms relative
-    extrapolation error, both times the mean"""
+    """{(eta, zeta): {"seeds": [...], q: {mean, stat, sys, dof}}, "pooled": {q: {group: (sd,
+    dof)}}}: stat the seeds' standard error (relative SD pooled per group of shapes), sys the
+    rms relative extrapolation bias, both times the mean"""
     shapes = {}
     for r in rows:
         shapes.setdefault((float(r["eta"]), float(r["zeta"])), []).append(r)
@@ -62,17 +66,18 @@ def shape_means(rows):
     for s, rs in shapes.items():
         out[s] = {"seeds": sorted(int(r["seed"]) for r in rs)}
     for q in QUANTITIES:
-        relative = [np.array([r[q] for r in rs]) / np.mean([r[q] for r in rs])
-                    for rs in shapes.values()]
-        sd, dof = pool(relative)
-        out["pooled"][q] = (sd, dof)
+        relative = {s: list(np.array([r[q] for r in rs]) / np.mean([r[q] for r in rs]))
+                    for s, rs in shapes.items()}
+        groups, of_shape = pooled_groups(relative)
+        out["pooled"][q] = {g: (e["sd"], e["dof"]) for g, e in groups.items()}
         for s, rs in shapes.items():
+            sd, dof = out["pooled"][q][of_shape[s]]
             mean = float(np.mean([r[q] for r in rs]))
-            errors = [relative_error(r, q) for r in rs]
-            sys = (None if None in errors else
-                   mean * math.sqrt(np.mean(np.square(errors))))
+            biases = [relative_bias(r, q) for r in rs]
+            sys = (None if None in biases else
+                   mean * math.sqrt(np.mean(np.square(biases))))
             stat = None if sd is None else mean * sd / math.sqrt(len(rs))
-            out[s][q] = {"mean": mean, "stat": stat, "sys": sys}
+            out[s][q] = {"mean": mean, "stat": stat, "sys": sys, "dof": dof}
     return out
 
 
@@ -82,7 +87,6 @@ def verdicts(means, sigma=None):
     out = []
     shapes = sorted(s for s in means if s != "pooled")
     for q, (_, against) in QUANTITIES.items():
-        sd, dof = means["pooled"][q]
         for s in shapes:
             m = means[s][q]
             if against == "spheres":
@@ -92,15 +96,17 @@ def verdicts(means, sigma=None):
                 diff = m["mean"] - ref["mean"]
                 parts = [(m["stat"], len(means[s]["seeds"])),
                          (ref["stat"], len(means[SPHERES]["seeds"]))]
-                sys = math.hypot(m["sys"] or 0.0, ref["sys"] or 0.0)
+                biases = (m["sys"], ref["sys"])
+                dof = min(m["dof"], ref["dof"])
                 yes, no = "higher than the spheres'", "lower than the spheres'"
             else:
                 diff = m["mean"] - 1.0
                 parts = [(m["stat"], len(means[s]["seeds"]))]
-                sys = m["sys"] or 0.0
+                biases, dof = (m["sys"],), m["dof"]
                 yes, no = "k_xx > k_zz", "k_xx < k_zz"
-            stat = (None if any(p[0] is None for p in parts)
-                    else math.sqrt(sum(p[0] ** 2 for p in parts)))
+            known = None not in biases and all(p[0] is not None for p in parts)
+            stat = math.sqrt(sum(p[0] ** 2 for p in parts)) if known else None
+            sys = math.sqrt(sum(b ** 2 for b in biases)) if known else 0.0
             z = significance(diff, stat, sys)
             compared = (s, SPHERES) if against == "spheres" else (s,)
             seeds = "-".join(sorted({"%d" % len(means[t]["seeds"]) for t in compared}))
