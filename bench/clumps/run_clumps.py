@@ -63,8 +63,11 @@ def fitted(k, fit_dir):
     path = os.path.join(fit_dir, "clump_k%d.json" % k)
     committed = os.path.join(COMMITTED_FITS, os.path.basename(path))
     if not os.path.exists(path) and os.path.exists(committed):
-        os.makedirs(fit_dir, exist_ok=True)
-        shutil.copy(committed, path)
+        with open(committed) as f:
+            fit = json.load(f)
+        if (fit["k"], fit["eta"], fit["zeta"]) == (k, ETA, ZETA):    # not a stale shape
+            os.makedirs(fit_dir, exist_ok=True)
+            shutil.copy(committed, path)
     if not os.path.exists(path):
         fit_clumps.main(["--k", str(k), "--eta", str(ETA), "--zeta", str(ZETA), "--out", fit_dir])
     with open(path) as f:
