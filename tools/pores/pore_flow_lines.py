@@ -94,7 +94,7 @@ def plot(rows, path):
             i = 1 if axis == "zeta" else 0
             shapes = sorted((s for s in means if s != "pooled" and study_stats.on_line(name, *s)),
                             key=lambda s: s[i])
-            if len(shapes) < 2:
+            if not shapes:
                 continue
             seeds = [r for r in rows if study_stats.on_line(name, r["eta"], r["zeta"])]
             ax.plot([r[("eta", "zeta")[i]] for r in seeds], [r[key] for r in seeds], "o",

@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from study_doc_claims import pm, table, z_cell
+from study_doc_claims import table, z_cell
 from study_flow_lines import QUANTITIES, deposit_row, line_of, shape_means, verdicts
 from study_stats import LINES
 
@@ -15,6 +15,7 @@ PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on eac
 NAMES = {"k_zz": "k_zz", "k_xx": "k_xx", "anisotropy": "k_xx / k_zz",
          "k_zz_over_kozeny_carman": "k_zz / k_KC"}
 SCALE = {"k_zz": 1e-4, "k_xx": 1e-4, "anisotropy": 1.0, "k_zz_over_kozeny_carman": 1.0}
+DIGITS = {"k_zz": 2, "k_xx": 2, "anisotropy": 3, "k_zz_over_kozeny_carman": 3}
 
 
 def load_rows(folder):
@@ -29,9 +30,10 @@ def load_rows(folder):
 
 def value_cell(m, q):
     """mean +- statistical error +- extrapolation bias, in SCALE's units"""
-    scale = SCALE[q]
-    text = pm(m["mean"] / scale, m["stat"] and m["stat"] / scale, 2)
-    return text + (" +- %.2f" % (m["sys"] / scale) if m["sys"] is not None else "")
+    scale, digits = SCALE[q], DIGITS[q]
+    stat = "n/a" if m["stat"] is None else "%.*f" % (digits, m["stat"] / scale)
+    sys = "n/a" if m["sys"] is None else "%.*f" % (digits, m["sys"] / scale)
+    return "%.*f +- %s +- %s" % (digits, m["mean"] / scale, stat, sys)
 
 
 def shape_text(s):
@@ -50,8 +52,9 @@ def flow_lines_block(results):
         "%s %s" % (g, "unknown" if sd is None else "%.1f %% (%d dof)" % (100 * sd, dof))
         for g, (sd, dof) in sorted(groups.items()))) for q, groups in means["pooled"].items())
     head = ("Deposits solved: %d of the %d planned (2 seeds at each of %d shapes). The seeds' "
-            "relative SD, pooled per group of shapes: %s." % (len(rows), PLANNED, PLANNED // 2,
-                                                        pooled))
+            "relative SD, pooled per group of shapes: %s. Each cell: mean +- statistical error "
+            "+- extrapolation bias (n/a: no seed scatter to pool yet)."
+            % (len(rows), PLANNED, PLANNED // 2, pooled))
     values = table(["eta, zeta", "line", "seeds", "porosity"]
                    + ["%s%s" % (NAMES[q], " (1e-4 d^2)" if SCALE[q] != 1.0 else "")
                       for q in QUANTITIES],
