@@ -81,9 +81,8 @@ def shape_means(rows):
     return out
 
 
-def verdicts(means, sigma=None):
+def verdicts(means):
     """[(shape, q, decision)]: k and k / k_KC against the spheres', k_xx / k_zz against 1"""
-    extra = {} if sigma is None else {"sigma": sigma}
     out = []
     shapes = sorted(s for s in means if s != "pooled")
     for q, (_, against) in QUANTITIES.items():
@@ -110,8 +109,8 @@ def verdicts(means, sigma=None):
             z = significance(diff, stat, sys)
             compared = (s, SPHERES) if against == "spheres" else (s,)
             seeds = "-".join(sorted({"%d" % len(means[t]["seeds"]) for t in compared}))
-            needed = seeds_needed(diff, parts, sys, **extra)
-            d = decide(z, needed, seeds, yes, no, dof, **extra)
+            needed = seeds_needed(diff, parts, sys)
+            d = decide(z, needed, seeds, yes, no, dof)
             d.update(difference=diff, stat=stat, sys=sys)
             out.append((s, q, d))
     return out
