@@ -1,7 +1,8 @@
 """doc/study.md's table of the viscous set's re-run (tools/study/study_doc.py): each finished
 re-run deposit (results/viscous_rerun/<point>/s<seed>/packing.dat) beside the same point and
-seed of the study's first run (results/study/points/...), steps, phi and Z; before it how many
-are finished and the range of the differences."""
+seed of the study's first run (kept in results/viscous_rerun/first_run/<point>/s<seed>/, so the
+comparison survives the re-run replacing the study's viscous points), steps, phi and Z; before
+it how many are finished and the range of the differences."""
 import glob
 import os
 
@@ -17,11 +18,12 @@ def viscous_rerun_block(results):
     """results: the study's results folder; the re-run's lies beside it"""
     rerun = os.path.join(os.path.dirname(os.path.normpath(results)), "viscous_rerun")
     rows, dphi, dz = [], [], []
-    planned = glob.glob(os.path.join(results, "points", "*_viscous", "s[12]", "packing.dat"))
-    for path in glob.glob(os.path.join(rerun, "*", "s*", "packing.dat")):
+    first_run = os.path.join(rerun, "first_run")
+    planned = glob.glob(os.path.join(first_run, "*", "s*", "packing.dat"))
+    for path in glob.glob(os.path.join(rerun, "*_viscous", "s*", "packing.dat")):
         point, seed = path.split(os.sep)[-3:-1]
         new = read_packing(path)
-        old = read_packing(os.path.join(results, "points", point, seed, "packing.dat"))
+        old = read_packing(os.path.join(first_run, point, seed, "packing.dat"))
         dphi.append(new["phi"] - old["phi"])
         dz.append(new["Z"] - old["Z"])
         rows.append(((new["eta"], new["zeta"], int(seed[1:])), [
