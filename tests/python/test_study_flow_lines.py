@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from study_flow_lines import deposit_row, shape_means, verdicts
+from study_flow_lines import deposit_row, shape_means, summary, verdicts
 
 
 def bracket(k, err):
@@ -90,3 +90,12 @@ def test_without_an_error_estimate_undecided():
 def test_without_spheres_no_comparison_with_them():
     v = verdicts(shape_means(ROWS[2:]))
     assert {q for _, q, _ in v} == {"anisotropy"}
+
+
+def test_the_summary_groups_shapes_by_verdict():
+    """the verdicts above (worked out by hand there) grouped per quantity, undecided last"""
+    got = summary(verdicts(shape_means(ROWS)))
+    assert got["k_zz"] == [("higher than the spheres'", [(2.0, 2.0)]),
+                           ("undecided", [(1.0, 3.0), (3.0, 1.0)])]
+    assert got["anisotropy"] == [("k_xx > k_zz", [(2.0, 2.0)]),
+                                 ("undecided", [(1.0, 1.0), (1.0, 3.0), (3.0, 1.0)])]

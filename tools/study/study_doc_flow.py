@@ -8,7 +8,7 @@ import os
 import numpy as np
 
 from study_doc_claims import table, z_cell
-from study_flow_lines import QUANTITIES, deposit_row, line_of, shape_means, verdicts
+from study_flow_lines import QUANTITIES, deposit_row, line_of, shape_means, summary, verdicts
 from study_stats import LINES
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
@@ -40,6 +40,17 @@ def shape_text(s):
     return "spheres" if s == (1.0, 1.0) else "%g, %g" % s
 
 
+def summary_text(decisions):
+    """one sentence per quantity: which shapes differ (3 sigma) and which are undecided"""
+    parts = []
+    for q, groups in summary(decisions).items():
+        parts.append("%s: %s." % (NAMES[q], "; ".join(
+            "%s at %s" % (verdict, ", ".join(
+                "the spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s) for s in shapes))
+            for verdict, shapes in groups)))
+    return "Summary (verdicts at 3 sigma, the table last): " + " ".join(parts)
+
+
 def flow_lines_block(results):
     """results: the study's results folder; the flow solves' lie beside it"""
     rows = load_rows(os.path.join(os.path.dirname(os.path.normpath(results)), "flow_lines"))
@@ -63,10 +74,11 @@ def flow_lines_block(results):
                      "%.4f" % np.mean([r["porosity"] for r in rows
                                        if (r["eta"], r["zeta"]) == s])]
                     + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
+    decisions = verdicts(means)
     decided = table(["eta, zeta", "quantity", "against", "difference", "z", "verdict"],
                     [[shape_text(s), NAMES[q], QUANTITIES[q][1],
                       ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
                       z_cell(d), d["verdict"]]
-                     for s, q, d in sorted(verdicts(means), key=lambda v: (v[1], v[0]))])
-    return head + "\n\n" + values + "\n\n" + decided
+                     for s, q, d in sorted(decisions, key=lambda v: (v[1], v[0]))])
+    return "\n\n".join([summary_text(decisions), head, values, decided])
 

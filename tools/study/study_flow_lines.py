@@ -5,6 +5,7 @@ deposit).
     deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC with their errors
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
+    summary(verdicts) -> per quantity the shapes of each verdict, undecided ones last
 
 Errors. A deposit's k carries the error of the extrapolation to a vanishing voxel
 (tools/pores/pore_flow_fit.py): the bracket's half-width (where in the bracket the limit lies,
@@ -114,6 +115,18 @@ def verdicts(means):
             d.update(difference=diff, stat=stat, sys=sys)
             out.append((s, q, d))
     return out
+
+
+def summary(decisions):
+    """{q: [(verdict, [shapes])]}: the shapes grouped by their verdict on q, the decided verdicts
+    first (in the order met), all undecided ones as one group "undecided" at the end"""
+    out = {}
+    for s, q, d in sorted(decisions, key=lambda v: v[0]):
+        verdict = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
+        groups = out.setdefault(q, {})
+        groups.setdefault(verdict, []).append(s)
+    return {q: sorted(groups.items(), key=lambda g: g[0] == "undecided")
+            for q, groups in out.items()}
 
 
 def line_of(shape):
