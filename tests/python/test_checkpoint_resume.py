@@ -5,7 +5,8 @@ killed with SIGKILL (runner and LAMMPS) after its first complete checkpoint, whi
 still inserting; the other checkpoint file is replaced by a torn copy, as a kill in the middle
 of a write leaves it. `deposit_run.py --resume DIR` must pick the intact checkpoint, read it
 (not start a new pour), insert the particles still missing and finish the deposit with every
-particle present, a sane volume fraction and `resumed_from STEP` in packing.dat.
+particle present, a sane volume fraction and `resumed_from STEP` in packing.dat, whose
+wall_seconds counts the killed segment too (its loop times, summed here from its log).
 """
 import json
 import os
@@ -103,6 +104,7 @@ def resumed(killed):
     assert r.returncode == 0, r.stdout[-3000:]
     return {"step": step, "path": path, "stdout": r.stdout,
             "log": open(os.path.join(killed, "log.resume-%d.lammps" % step)).read(),
+            "killed_log": open(os.path.join(killed, "log.lammps")).read(),
             "packing": deposit_run.read_packing(os.path.join(killed, "packing.dat")),
             "dump": open(os.path.join(killed, "deposit.dump")).read().splitlines(),
             "files": os.listdir(killed)}
@@ -130,3 +132,12 @@ def test_resumed_deposit_is_complete(resumed):
     assert ids == list(range(1, N + 1))
     # finished: the checkpoints are gone, nothing left to resume
     assert not any(n in resumed["files"] for n in deposit_run.CHECKPOINTS)
+
+
+def test_resumed_cost_counts_the_killed_segment(resumed):
+    """wall_seconds = this segment's wall time + the killed segment's run commands' loop times"""
+    loops = [float(line.split()[3]) for line in resumed["killed_log"].splitlines()
+             if line.startswith("Loop time of ")]
+    pk = resumed["packing"]
+    assert loops and pk["earlier_segments_seconds"] == pytest.approx(sum(loops), abs=0.01)
+    assert pk["wall_seconds"] > pk["earlier_segments_seconds"] > 0

@@ -1,12 +1,16 @@
 """The checkpoints of tools/deposit/deposit_run.py: LAMMPS restart files written alternately to
-checkpoint.a and checkpoint.b in the run folder; the newer complete one is resumed from."""
+checkpoint.a and checkpoint.b in the run folder; the newer complete one is resumed from. A
+resumed run's cost counts its earlier segments from their LAMMPS logs."""
+import glob
 import os
+import re
 import struct
 
 CHECKPOINTS = ("checkpoint.a", "checkpoint.b")
 RESTART_MAGIC = b"LammpS RestartT\0"
 # flags of the restart header (enum in LAMMPS lmprestart.h) up to the time step: strings
 # (VERSION, UNITS), ints (SMALLINT, TAGINT, IMAGEINT), the size of a bigint, NTIMESTEP
+LOOP_TIME = re.compile(r"^Loop time of ([0-9.eE+-]+) on ")    # a run command's wall time
 RESTART_STRING_FLAGS, RESTART_INT_FLAGS, RESTART_BIGINT_SIZE, RESTART_NTIMESTEP = \
     (0, 4), (1, 2, 48), 3, 5
 
@@ -55,3 +59,17 @@ def newest_checkpoint(out):
         return None, None
     step, path = max(found)
     return path, step
+
+
+def earlier_segments_seconds(out, current_log):
+    """wall seconds of a resumed run's earlier segments: the loop times of the run commands in
+    their LAMMPS logs (log.lammps and log.resume-*.lammps but current_log). Steps a killed
+    segment ran after its last checkpoint count too: they were computed, and again after it."""
+    seconds = 0.0
+    for path in [os.path.join(out, "log.lammps")] + glob.glob(
+            os.path.join(out, "log.resume-*.lammps")):
+        if os.path.basename(path) == current_log or not os.path.exists(path):
+            continue
+        with open(path, errors="replace") as f:
+            seconds += sum(float(m.group(1)) for m in map(LOOP_TIME.match, f) if m)
+    return seconds

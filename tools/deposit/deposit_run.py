@@ -19,7 +19,8 @@ Checkpoints: every --checkpoint-every steps LAMMPS writes a restart file, altern
 checkpoint.a and checkpoint.b in the run folder, so a kill while one is being written leaves
 the other intact. The run's settings are stored in settings.json; --resume DIR continues from
 the newer complete checkpoint with those settings and records `resumed_from STEP` in
-packing.dat. The checkpoints are removed once the deposit is finished.
+packing.dat, whose wall_seconds then adds the earlier segments' (earlier_segments_seconds,
+from their logs). The checkpoints are removed once the deposit is finished.
 The entry script sets LAMMPS_BUILD, LAMMPS_PLUGIN_PATH, LD_LIBRARY_PATH and the OpenMPI
 run-as-root variables.
 """
@@ -36,7 +37,8 @@ import sys
 import time
 
 import deposit_report
-from deposit_checkpoint import CHECKPOINTS, checkpoint_step, newest_checkpoint  # noqa: F401
+from deposit_checkpoint import (CHECKPOINTS, checkpoint_step,  # noqa: F401
+                                 earlier_segments_seconds, newest_checkpoint)
 from deposit_depth import too_shallow
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
@@ -359,6 +361,8 @@ def main(argv=None):
         print("deposit_run: resuming %s from step %d (%s)"
               % (out, resume_step, os.path.basename(resume_from)), flush=True)
     result, wall = run_lammps(args, settings, out, resume_from, resume_step)
+    earlier = (earlier_segments_seconds(out, "log.resume-%d.lammps" % resume_step)
+               if resume_from else 0.0)
     for name in CHECKPOINTS:    # the deposit is finished: nothing to resume
         if os.path.exists(os.path.join(out, name)):
             os.remove(os.path.join(out, name))
@@ -371,13 +375,13 @@ def main(argv=None):
         for p in pics:
             os.remove(p)
     pk = read_packing(os.path.join(out, "packing.dat"))
-    pk["wall_seconds"] = round(wall, 2)
+    pk["wall_seconds"] = round(wall + earlier, 2)
     pk["np"] = args.np
     with open(os.path.join(out, "packing.dat"), "a") as f:
-        f.write("wall_seconds %.2f\nnp %d\n" % (wall, args.np))
+        f.write("wall_seconds %.2f\nnp %d\n" % (wall + earlier, args.np))
         if resume_from:
-            f.write("resumed_from %d\n" % resume_step)
-            pk["resumed_from"] = resume_step
+            f.write("resumed_from %d\nearlier_segments_seconds %.2f\n" % (resume_step, earlier))
+            pk.update(resumed_from=resume_step, earlier_segments_seconds=round(earlier, 2))
     if pk.get("slab_ok", 1) == 0 and pk.get("slabmin", 1) > 0:    # slabmin 0: no check asked
         sys.exit("deposit_run: the deposit is too shallow for its measuring slab (%.3g mean "
                  "diameters thick, slabmin %g): no phi, Z or forces; packing.dat says slab_ok 0; "

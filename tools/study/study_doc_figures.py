@@ -1,7 +1,8 @@
 """doc/study.md's figure list and the study's cost (tools/study/study_doc.py): each figure with the
 paper's figure it answers (the numbers of the paper's LaTeX source), the command that draws
 it and its sets in workflow/config/paper.yaml; the deposits and CPU hours per selection from
-deposits.csv (wall_seconds x np, the runner's)."""
+deposits.csv (wall_seconds x np, the runner's; a resumed deposit's earlier segments from their
+logs, where they were kept)."""
 import csv
 import os
 
@@ -68,5 +69,14 @@ def cost_block(data):
            for (n, w, dr, law), v in sorted(groups.items())]
     out.append(["all", "", "", "", "%d" % len(rows), "%d" % window(rows), "%.1f" % hours(rows),
                 "%.1f" % (60 * hours(rows) / len(rows))])
+    uncounted = [r for r in rows if r.get("resumed_from") and
+                 r.get("earlier_segments_seconds", "") == ""]
+    note = ("" if not uncounted else
+            "\n\n%d deposit%s resumed from a checkpoint before the runner counted the earlier "
+            "segments (their logs are gone): %s count only the last segment, a lower bound (%s)."
+            % (len(uncounted), "s were" if len(uncounted) > 1 else " was",
+               "they" if len(uncounted) > 1 else "it",
+               ", ".join("%s s%s from step %s" % (r["point"], r["seed"], r["resumed_from"])
+                         for r in uncounted)))
     return table(["N", "box edge (d)", "delta_r", "law", "deposits", "with window means",
-                  "CPU hours", "CPU minutes per deposit"], out)
+                  "CPU hours", "CPU minutes per deposit"], out) + note

@@ -56,6 +56,8 @@ def deposit_row(packing_path):
            "width": point_width(point),
            "rattler_fraction": pk["rattlers"] / pk["Nslab"] if pk["Nslab"] > 0 else math.nan,
            "resumed_from": int(pk["resumed_from"]) if "resumed_from" in pk else "",
+           # "" for a resumed deposit whose earlier segments the runner did not yet count
+           "earlier_segments_seconds": pk.get("earlier_segments_seconds", ""),
            "at_rest": pk.get("at_rest", 1) == 1}    # older packing.dat: written at rest only
     for q in QUANTITIES:
         row.setdefault(q, pk.get(q, math.nan))
@@ -103,7 +105,8 @@ def main(argv=None):
         sys.exit("study_table: ERROR: deposits not at rest (maxchunks ran out), not a result: "
                  + " ".join(moving))
     write_csv(os.path.join(results, "deposits.csv"),
-              ["point"] + KEYS + ["seed"] + QUANTITIES + ["resumed_from"], deposits)
+              ["point"] + KEYS + ["seed"] + QUANTITIES + ["resumed_from", "earlier_segments_seconds"],
+              deposits)
 
     by_point = defaultdict(list)
     for r in deposits:
