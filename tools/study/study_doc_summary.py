@@ -28,9 +28,7 @@ def summary_rows(data):
     rise = diff(p, top, diag[0])
     rows = [["phi rises from spheres to the diagonal's highest point %s (%s)" % (shape(top), law),
              signed(rise[0], rise[1], 4), "rises" if rise[2] >= SIGMA else "undecided"]]
-    for m in v["maximum"]:
-        if m["law"] != law:    # the viscous set awaits its re-run (study.md): appendix only
-            continue
+    for m in v["maximum"]:    # every law's: the paper's law (viscous) beside the default
         rows.append(["diagonal maximum's position eta = zeta (%s, delta_r %g)"
                      % (m["law"], m["delta_r"]),
                      pm(m["x_max"], math.hypot(m["stat"] or 0.0, m["sys"]), 3),
