@@ -125,3 +125,18 @@ def test_the_page_opens_with_the_summary_and_states_the_cost():
     assert all("%s s%s from step %s" % (r["point"], r["seed"], r["resumed_from"]) in cost
                for r in uncounted)
     assert ("%d deposit" % len(uncounted) in cost) == bool(uncounted)
+
+
+def test_the_viscous_creep_starts_where_the_bed_is_calm_for_good(tmp_path):
+    """study_doc_viscous.creep: from the last step the kinetic energy per particle falls below
+    1e-3 (an earlier dip does not count) to the end; a bed never calm gives None"""
+    from study_doc_viscous import creep
+    path = tmp_path / "thermo.csv"
+    ke = [5.0, 2e-3, 5e-4, 2e-3, 5e-4, 1e-4]
+    path.write_text("step,time,ke_per_particle,phi,Z\n" + "".join(
+        "%d,%g,%g,%g,%g\n" % (1000 * (i + 1), 0.1 * i, k, 0.60 + 0.01 * i, 9.0 + 0.1 * i)
+        for i, k in enumerate(ke)))
+    calm, end = creep(str(path))
+    assert calm == pytest.approx((5000, 0.64, 9.4)) and end == pytest.approx((6000, 0.65, 9.5))
+    path.write_text("step,time,ke_per_particle,phi,Z\n1000,0.1,0.5,0.6,9\n2000,0.2,2e-3,0.6,9\n")
+    assert creep(str(path)) is None
