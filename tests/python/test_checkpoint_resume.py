@@ -141,3 +141,20 @@ def test_resumed_cost_counts_the_killed_segment(resumed):
     pk = resumed["packing"]
     assert loops and pk["earlier_segments_seconds"] == pytest.approx(sum(loops), abs=0.01)
     assert pk["wall_seconds"] > pk["earlier_segments_seconds"] > 0
+
+
+def test_segment_logs_are_named_apart_and_cleared_by_a_fresh_start(tmp_path):
+    """a second resume from the same checkpoint keeps the first one's log (log.resume-STEP-2);
+    no earlier log gives None (not counted), not 0; a fresh start removes an earlier run's logs"""
+    out = str(tmp_path)
+    assert deposit_run.resume_log(out, 1000) == "log.resume-1000.lammps"
+    assert deposit_run.earlier_segments_seconds(out, "log.resume-1000.lammps") is None
+    loop = "Loop time of 2.5 on 1 procs for 1000 steps with 100 atoms\n"
+    for name in ("log.lammps", "log.resume-1000.lammps"):
+        (tmp_path / name).write_text(loop)
+    second = deposit_run.resume_log(out, 1000)
+    assert second == "log.resume-1000-2.lammps"
+    (tmp_path / second).write_text(loop)
+    assert deposit_run.earlier_segments_seconds(out, second) == pytest.approx(5.0)
+    deposit_run.start_fresh(out)
+    assert os.listdir(out) == []

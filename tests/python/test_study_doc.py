@@ -127,16 +127,22 @@ def test_the_page_opens_with_the_summary_and_states_the_cost():
     assert ("%d deposit" % len(uncounted) in cost) == bool(uncounted)
 
 
-def test_the_viscous_creep_starts_where_the_bed_is_calm_for_good(tmp_path):
-    """study_doc_viscous.creep: from the last step the kinetic energy per particle falls below
-    1e-3 (an earlier dip does not count) to the end; a bed never calm gives None"""
-    from study_doc_viscous import creep
-    path = tmp_path / "thermo.csv"
+def test_the_viscous_comparison_at_equal_time_and_from_first_calm():
+    """study_doc_viscous: the re-run's row nearest the first run's last time (steps x 6e-4)
+    against the first run, and the creep from the first row below 1e-3 (where the first run's
+    criterion stopped it) to the end, on rows made by hand"""
+    from study_doc_viscous import comparison_text, first_calm
     ke = [5.0, 2e-3, 5e-4, 2e-3, 5e-4, 1e-4]
-    path.write_text("step,time,ke_per_particle,phi,Z\n" + "".join(
-        "%d,%g,%g,%g,%g\n" % (1000 * (i + 1), 0.1 * i, k, 0.60 + 0.01 * i, 9.0 + 0.1 * i)
-        for i, k in enumerate(ke)))
-    calm, end = creep(str(path))
-    assert calm == pytest.approx((5000, 0.64, 9.4)) and end == pytest.approx((6000, 0.65, 9.5))
-    path.write_text("step,time,ke_per_particle,phi,Z\n1000,0.1,0.5,0.6,9\n2000,0.2,2e-3,0.6,9\n")
-    assert creep(str(path)) is None
+    rows = [{"step": 1000.0 * (i + 1), "time": 4.0 * i, "ke_per_particle": k,
+             "phi": 0.60 + 0.01 * i, "Z": 9.0 + 0.1 * i} for i, k in enumerate(ke)]
+    assert first_calm(rows) is rows[2]    # the first dip below the criterion
+    assert first_calm(rows[:2]) is None
+    # first runs ending at t = 12.0 (row 3) and 8.4 (row 2), 0.01 and 0.03 below the re-run
+    pairs = [({"steps": 20000, "phi": 0.62, "Z": 9.25}, rows),
+             ({"steps": 14000, "phi": 0.59, "Z": 9.2}, rows)]
+    text = comparison_text(pairs)
+    assert "phi +0.0200 (SD 0.0141 over the 2 deposits) and Z +0.025 (SD 0.035)" in text
+    assert "at t 8.0 to 8.0 (the first run stopped at 8.4 to 12.0)" in text
+    assert "12 to 12 time units later, phi rose by +0.0300 to +0.0300 and Z by +0.30" in text
+    assert "over its last 10 000 steps phi still rose by +0.0500 to +0.0500" in text
+    assert comparison_text([(pairs[0][0], rows[:2])]) == ""    # never calm: no creep to give

@@ -61,15 +61,32 @@ def newest_checkpoint(out):
     return path, step
 
 
+def resume_log(out, step):
+    """the LAMMPS log name of a segment resumed from step: log.resume-STEP.lammps, numbered on
+    (log.resume-STEP-2.lammps, ...) when an earlier segment resumed from the same checkpoint"""
+    name, k = "log.resume-%d.lammps" % step, 1
+    while os.path.exists(os.path.join(out, name)):
+        k += 1
+        name = "log.resume-%d-%d.lammps" % (step, k)
+    return name
+
+
+def segment_logs(out):
+    """the LAMMPS logs of every segment of the run in out"""
+    return [p for p in [os.path.join(out, "log.lammps")]
+            + glob.glob(os.path.join(out, "log.resume-*.lammps")) if os.path.exists(p)]
+
+
 def earlier_segments_seconds(out, current_log):
     """wall seconds of a resumed run's earlier segments: the loop times of the run commands in
-    their LAMMPS logs (log.lammps and log.resume-*.lammps but current_log). Steps a killed
-    segment ran after its last checkpoint count too: they were computed, and again after it."""
+    their LAMMPS logs (all but current_log); None when no earlier log is left. A run command a
+    kill interrupted wrote no loop time; the completed ones after the last checkpoint count,
+    since they were computed, and again after it."""
+    earlier = [p for p in segment_logs(out) if os.path.basename(p) != current_log]
+    if not earlier:
+        return None
     seconds = 0.0
-    for path in [os.path.join(out, "log.lammps")] + glob.glob(
-            os.path.join(out, "log.resume-*.lammps")):
-        if os.path.basename(path) == current_log or not os.path.exists(path):
-            continue
+    for path in earlier:
         with open(path, errors="replace") as f:
             seconds += sum(float(m.group(1)) for m in map(LOOP_TIME.match, f) if m)
     return seconds

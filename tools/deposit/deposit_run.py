@@ -18,9 +18,9 @@ says slab_ok 0); --var slabmin 0 asks for no check (an empty slab still says sla
 Checkpoints: every --checkpoint-every steps LAMMPS writes a restart file, alternately
 checkpoint.a and checkpoint.b in the run folder, so a kill while one is being written leaves
 the other intact. The run's settings are stored in settings.json; --resume DIR continues from
-the newer complete checkpoint with those settings and records `resumed_from STEP` in
-packing.dat, whose wall_seconds then adds the earlier segments' (earlier_segments_seconds,
-from their logs). The checkpoints are removed once the deposit is finished.
+the newer complete checkpoint with those settings, records `resumed_from STEP` in packing.dat
+and counts the earlier segments in its wall_seconds (deposit_checkpoint.py); the checkpoints
+are removed once the deposit is finished.
 The entry script sets LAMMPS_BUILD, LAMMPS_PLUGIN_PATH, LD_LIBRARY_PATH and the OpenMPI
 run-as-root variables.
 """
@@ -37,8 +37,8 @@ import sys
 import time
 
 import deposit_report
-from deposit_checkpoint import (CHECKPOINTS, checkpoint_step,  # noqa: F401
-                                 earlier_segments_seconds, newest_checkpoint)
+from deposit_checkpoint import (CHECKPOINTS, checkpoint_step, earlier_segments_seconds,  # noqa
+                                 newest_checkpoint, resume_log, segment_logs)
 from deposit_depth import too_shallow
 
 ROOT = os.environ.get("ELLIPSOID_DEP_ROOT",
@@ -124,8 +124,7 @@ def mpi_env():
     return env
 
 
-def run_lammps(args, settings, out, resume_from=None, resume_step=None):
-    log_name = "log.lammps" if resume_from is None else "log.resume-%d.lammps" % resume_step
+def run_lammps(args, settings, out, resume_from=None, log_name="log.lammps"):
     cmd = lammps_command(settings, out, resume_from, log_name)
     env = mpi_env()
     print("deposit_run: " + " ".join(cmd), flush=True)
@@ -306,10 +305,10 @@ def write_settings(out, settings):
 
 
 def start_fresh(out):
-    """Remove what an earlier run left in the folder that the new one would not overwrite."""
-    for name in CHECKPOINTS + ("packing.dat",):
-        if os.path.exists(os.path.join(out, name)):
-            os.remove(os.path.join(out, name))
+    """Remove what an earlier run left that the new one would not overwrite or would count."""
+    for path in [os.path.join(out, n) for n in CHECKPOINTS + ("packing.dat",)] + segment_logs(out):
+        if os.path.exists(path):
+            os.remove(path)
 
 
 def plan(args):
@@ -360,9 +359,9 @@ def main(argv=None):
     if resume_from:
         print("deposit_run: resuming %s from step %d (%s)"
               % (out, resume_step, os.path.basename(resume_from)), flush=True)
-    result, wall = run_lammps(args, settings, out, resume_from, resume_step)
-    earlier = (earlier_segments_seconds(out, "log.resume-%d.lammps" % resume_step)
-               if resume_from else 0.0)
+    log_name = resume_log(out, resume_step) if resume_from else "log.lammps"
+    result, wall = run_lammps(args, settings, out, resume_from, log_name)
+    earlier = earlier_segments_seconds(out, log_name) if resume_from else None
     for name in CHECKPOINTS:    # the deposit is finished: nothing to resume
         if os.path.exists(os.path.join(out, name)):
             os.remove(os.path.join(out, name))
@@ -375,13 +374,14 @@ def main(argv=None):
         for p in pics:
             os.remove(p)
     pk = read_packing(os.path.join(out, "packing.dat"))
-    pk["wall_seconds"] = round(wall + earlier, 2)
-    pk["np"] = args.np
+    runner = {"wall_seconds": round(wall + (earlier or 0.0), 2), "np": args.np}
+    if resume_from:    # no earlier_segments_seconds when their logs are gone: not counted
+        runner["resumed_from"] = resume_step
+        if earlier is not None:
+            runner["earlier_segments_seconds"] = round(earlier, 2)
+    pk.update(runner)
     with open(os.path.join(out, "packing.dat"), "a") as f:
-        f.write("wall_seconds %.2f\nnp %d\n" % (wall + earlier, args.np))
-        if resume_from:
-            f.write("resumed_from %d\nearlier_segments_seconds %.2f\n" % (resume_step, earlier))
-            pk.update(resumed_from=resume_step, earlier_segments_seconds=round(earlier, 2))
+        f.writelines("%s %s\n" % kv for kv in runner.items())
     if pk.get("slab_ok", 1) == 0 and pk.get("slabmin", 1) > 0:    # slabmin 0: no check asked
         sys.exit("deposit_run: the deposit is too shallow for its measuring slab (%.3g mean "
                  "diameters thick, slabmin %g): no phi, Z or forces; packing.dat says slab_ok 0; "

@@ -1,69 +1,88 @@
 """doc/study.md's table of the viscous set's re-run (tools/study/study_doc.py): each deposit of
 the study's viscous set (results/study/points/<point>/s<seed>/packing.dat, the re-run since
-6 Dec 2026) beside the same point and seed of the first run (results/viscous_rerun/first_run/,
-made at a time step beyond the law's stability bound), steps, phi and Z; before it the range of
-the differences and the creep after the bed is calm (each re-run's thermo.csv in
+6 Dec 2026) beside the same point and seed of the first run (results/viscous_rerun/first_run/),
+steps, phi and Z. Before the table: the range of the differences, the re-run at the first run's
+last time (the same beds?), its creep from where it first met the first run's rest criterion
+to its end and over its last LAST_STEPS steps (each re-run's thermo.csv in
 results/viscous_rerun/<point>/s<seed>/)."""
 import csv
 import glob
 import os
 
+import numpy as np
+
 from deposit_run import read_packing
 from study_doc_claims import table
+
+FIRST_RUN_DT = 6.0e-4    # paper.yaml's vars when the first run was made (00ed1c3, 9e44684)
+CALM = 1.0e-3            # paper.yaml's ketol (m g d per particle): the first run's only criterion
+LAST_STEPS = 10000       # the creep still left when the present criterion stops a run
 
 
 def thousands(steps):
     return "{:,}".format(int(steps)).replace(",", " ")
 
 
-CALM = 1e-3    # kinetic energy per particle below which the bed is called calm
-
-
-def creep(path):
-    """(step, phi, Z) where a thermo.csv's kinetic energy per particle falls below CALM for good
-    (its last crossing) and (step, phi, Z) at its end; None if it never does"""
+def read_thermo(path):
+    """thermo.csv's rows (step, time, ke_per_particle, phi, Z) as floats"""
     with open(path) as f:
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    moving = [i for i, r in enumerate(rows) if r["ke_per_particle"] >= CALM]
-    first = moving[-1] + 1 if moving else 0
-    if first >= len(rows):
-        return None
-    return tuple((r["step"], r["phi"], r["Z"]) for r in (rows[first], rows[-1]))
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
-def creep_text(rerun, rows):
-    """after the bed is calm: the range of the rise in phi and Z and of the steps it took, and
-    the thinnest shape's first seed in full"""
-    found = {key: creep(os.path.join(rerun, point, seed, "thermo.csv"))
-             for key, point, seed in rows}
-    found = {k: c for k, c in found.items() if c}
-    if not found:
+def first_calm(rows):
+    """the first row whose kinetic energy per particle is below CALM (where the first run's
+    criterion stopped it), None if there is none"""
+    return next((r for r in rows if r["ke_per_particle"] < CALM), None)
+
+
+def nearest(rows, time):
+    return min(rows, key=lambda r: abs(r["time"] - time))
+
+
+def nearest_step(rows, step):
+    return min(rows, key=lambda r: abs(r["step"] - step))
+
+
+def comparison_text(pairs):
+    """pairs: [(first run's packing, re-run's thermo rows)]: the re-run at the first run's last
+    time, and its creep from its first calm row to its end"""
+    same = np.array([(r["phi"] - old["phi"], r["Z"] - old["Z"]) for old, rows in pairs
+                     for r in [nearest(rows, old["steps"] * FIRST_RUN_DT)]])
+    calm = [(first_calm(rows), rows[-1]) for _, rows in pairs]
+    if any(c is None for c, _ in calm):
         return ""
-    dphi = [end[1] - calm[1] for calm, end in found.values()]
-    dz = [end[2] - calm[2] for calm, end in found.values()]
-    steps = [end[0] - calm[0] for calm, end in found.values()]
-    thin = max(found, key=lambda k: (k[0], k[1], -k[2]))    # the first seed
-    (s0, p0, z0), (s1, p1, z1) = found[thin]
-    return (" After the kinetic energy per particle fell below %g for good (%d deposits), phi "
-            "still rose by %+.3f to %+.3f and Z by %+.2f to %+.2f over the remaining %s to %s "
-            "steps; at eta = zeta = %g, seed %d: phi %.4f and Z %.2f at step %s, %.4f and %.2f "
-            "at %s." % (CALM, len(found), min(dphi), max(dphi), min(dz), max(dz),
-                        thousands(min(steps)), thousands(max(steps)), thin[0], thin[2], p0, z0,
-                        thousands(s0), p1, z1, thousands(s1)))
+    creep = np.array([(end["phi"] - c["phi"], end["Z"] - c["Z"], end["time"] - c["time"])
+                      for c, end in calm])
+    times = [c["time"] for c, _ in calm]
+    last = [rows[-1]["phi"] - nearest_step(rows, rows[-1]["step"] - LAST_STEPS)["phi"]
+            for _, rows in pairs]
+    first_end = [old["steps"] * FIRST_RUN_DT for old, _ in pairs]
+    return (" At the first run's last time (its steps x dt %g) the re-run differed from it by "
+            "phi %+.4f (SD %.4f over the %d deposits) and Z %+.3f (SD %.3f): the same beds at "
+            "the same time. The re-run first met the first run's rest criterion (kinetic energy "
+            "per particle below %g m g d) at t %.1f to %.1f (the first run stopped at %.1f to "
+            "%.1f); from there to its end, %.0f to %.0f time units later, phi rose by %+.4f to "
+            "%+.4f and Z by %+.2f to %+.2f, and over its last %s steps phi still rose by "
+            "%+.4f to %+.4f: the numbers are those at in.deposit's present rest criterion."
+            % (FIRST_RUN_DT, same[:, 0].mean(), same[:, 0].std(ddof=1), len(pairs),
+               same[:, 1].mean(), same[:, 1].std(ddof=1), CALM, min(times), max(times),
+               min(first_end), max(first_end), creep[:, 2].min(), creep[:, 2].max(),
+               creep[:, 0].min(), creep[:, 0].max(), creep[:, 1].min(), creep[:, 1].max(),
+               thousands(LAST_STEPS), min(last), max(last)))
 
 
 def viscous_rerun_block(results):
     """results: the study's results folder; the first run's deposits lie beside it"""
-    first_run = os.path.join(os.path.dirname(os.path.normpath(results)), "viscous_rerun",
-                             "first_run")
-    rows, dphi, dz, runs = [], [], [], []
-    for path in glob.glob(os.path.join(first_run, "*", "s*", "packing.dat")):
+    rerun = os.path.join(os.path.dirname(os.path.normpath(results)), "viscous_rerun")
+    rows, dphi, dz, pairs = [], [], [], []
+    for path in glob.glob(os.path.join(rerun, "first_run", "*", "s*", "packing.dat")):
         point, seed = path.split(os.sep)[-3:-1]
         old = read_packing(path)
         new = read_packing(os.path.join(results, "points", point, seed, "packing.dat"))
         dphi.append(new["phi"] - old["phi"])
         dz.append(new["Z"] - old["Z"])
-        runs.append(((new["eta"], new["zeta"], int(seed[1:])), point, seed))
+        thermo = os.path.join(rerun, point, seed, "thermo.csv")
+        pairs.append((old, read_thermo(thermo) if os.path.exists(thermo) else None))
         rows.append(((new["eta"], new["zeta"], int(seed[1:])), [
             "%g" % new["eta"] if new["eta"] == new["zeta"] else "%g, %g" % (new["eta"], new["zeta"]),
             seed[1:]] + ["%s, %.4f, %.2f" % (thousands(d["steps"]), d["phi"], d["Z"])
@@ -71,7 +90,8 @@ def viscous_rerun_block(results):
     if not rows:
         return "No first run kept."
     summary = ("Re-run minus first run, %d deposits: phi %+.3f to %+.3f, Z %+.2f to %+.2f."
-               % (len(rows), min(dphi), max(dphi), min(dz), max(dz))
-               + creep_text(os.path.dirname(first_run), runs))
+               % (len(rows), min(dphi), max(dphi), min(dz), max(dz)))
+    if all(t is not None for _, t in pairs):
+        summary += comparison_text(pairs)
     return summary + "\n\n" + table(["eta = zeta", "seed", "first run: steps, phi, Z",
                                      "re-run: steps, phi, Z"], [r for _, r in sorted(rows)])
