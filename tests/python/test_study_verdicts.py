@@ -251,6 +251,10 @@ def test_crossings_and_sphere_isotropy():
     assert s["deviation"][0] == pytest.approx(-0.2, abs=1e-5)
     assert s["largest"]["theta"] == s["most_significant"]["theta"] == pytest.approx(THETA[0])
     assert not s["within_10_percent"] and s["p_isotropic"] < 1e-6
+    # another law's spheres (any scatter) do not enter this law's errors
+    noisy_sphere = Selection(deposit(1.0, 1.0, 0.05, 0.64, 6.5, 0.0, 0.0, -0.2))
+    other = {(0.0, "coulomb"): base, (0.0, "viscous"): noisy_sphere}
+    assert study_histograms.sphere_isotropy(other, (0.0, "coulomb"))["se"] == s["se"]
 
 
 def test_force_trends_along_the_diagonal():

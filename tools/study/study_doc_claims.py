@@ -247,7 +247,7 @@ def sphere_rows(v):
                      "most significant deviation %+.1f +- %.1f %% at theta %.2f; largest %+.0f +- "
                      "%.0f %% at theta %.2f; bins beyond 10 %%: %s; chi^2 %.1f for %d bins "
                      "(errors: per-bin seed SD pooled over the sphere's deposits of every "
-                     "delta_r and law, %d dof)"
+                     "delta_r of its law, %d dof)"
                      % (100 * sig["deviation"], 100 * sig["se"], sig["theta"],
                         100 * big["deviation"], 100 * big["se"], big["theta"],
                         "; ".join(beyond) or "none", s["chi2"], s["chi2_dof"],

@@ -242,7 +242,7 @@ def fabric_row(data):
             "a_z = F_zz - (F_xx + F_yy)/2: %s; a_z(3, 3) - a_z(2, 2) %s; spheres: most "
             "significant deviation from 1/(4 pi) %+.1f +- %.1f %% at theta %.2f, largest %+.0f "
             "+- %.0f %% at theta %.2f (per-bin errors pooled over the sphere deposits of every "
-            "delta_r and law), chi^2 %.0f for %d bins"
+            "delta_r of its law), chi^2 %.0f for %d bins"
             % (cells, dtext(*deepen[:2], 3, deepen[3]) if deepen else "-",
                100 * sig["deviation"], 100 * sig["se"], sig["theta"], 100 * big["deviation"],
                100 * big["se"], big["theta"], s["chi2"], s["chi2_dof"]),

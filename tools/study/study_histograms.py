@@ -10,7 +10,7 @@
   the crossing's error from the per-bin errors and the slope of the difference.
 * `sphere_isotropy`: the sphere's contact normals against 1/(4 pi): per bin of the upper half
   (the curve is symmetric about pi/2 by construction) the relative deviation with its
-  error from the per-bin seed SD pooled over the sphere's deposits of every selection, the
+  error from the per-bin seed SD pooled over the sphere's deposits of its law's selections, the
   largest deviation and chi^2 over the bins; the same chi^2 with counting errors (a bin's
   contacts ~ its fraction x Nslab Z) as a check that does not lean on a few seeds.
 """
@@ -142,13 +142,14 @@ def crossings_both(selection, pi_fraction):
 
 
 def sphere_isotropy(selections, key):
-    """the sphere's contact normals in selection `key` against 1/(4 pi); the per-bin error
-    from the seed SD pooled over the sphere's deposits of every selection (every delta_r and
-    law: the sphere is one shape per selection, too few seeds to pool within one); the bin of
-    the most significant deviation and the bin of the largest"""
+    """the sphere's contact normals in selection `key` (delta_r, law) against 1/(4 pi); the
+    per-bin error from the seed SD pooled over the sphere's deposits of every delta_r of the
+    same law (the sphere is one shape per selection, too few seeds to pool within one; another
+    law's beds differ in structure, and their scatter is not this law's); the bin of the most
+    significant deviation and the bin of the largest"""
     name = FILES["contact_normals"][0]
     spheres = {k: sel.shapes[(1.0, 1.0)] for k, sel in selections.items()
-               if (1.0, 1.0) in sel.shapes}
+               if (1.0, 1.0) in sel.shapes and k[1] == key[1]}
     if key not in spheres:
         return None
     theta = np.asarray(spheres[key][0][name][0])
