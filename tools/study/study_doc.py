@@ -30,6 +30,7 @@ from study_doc_flow import flow_lines_block  # noqa: E402
 from study_doc_forces import forces_block  # noqa: E402
 from study_doc_paper import claims_block  # noqa: E402
 from study_doc_summary import summary_block  # noqa: E402
+from study_doc_sphere_slabs import sphere_slabs_block  # noqa: E402
 from study_doc_viscous import viscous_rerun_block  # noqa: E402
 from study_stats import Pooled  # noqa: E402
 
@@ -184,7 +185,8 @@ def blocks(data):
             "figures": figures_block(data),
             "forces": forces_block(data), "depth": depth_block(data),
             "porous": porous_block(data), "viscous_rerun": viscous_rerun_block(data.results),
-            "flow_lines": flow_lines_block(data.results)}
+            "flow_lines": flow_lines_block(data.results),
+            "sphere_slabs": sphere_slabs_block(data.results)}
 
 
 def render(text, generated):
