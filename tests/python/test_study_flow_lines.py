@@ -95,6 +95,7 @@ def test_without_spheres_no_comparison_with_them():
 def test_the_summary_groups_shapes_by_verdict():
     """the verdicts above (worked out by hand there) grouped per quantity, undecided last"""
     got = summary(verdicts(shape_means(ROWS)))
+    assert list(got) == ["k_zz", "k_xx", "anisotropy", "k_zz_over_kozeny_carman"]
     assert got["k_zz"] == [("higher than the spheres'", [(2.0, 2.0)]),
                            ("undecided", [(1.0, 3.0), (3.0, 1.0)])]
     assert got["anisotropy"] == [("k_xx > k_zz", [(2.0, 2.0)]),

@@ -118,15 +118,15 @@ def verdicts(means):
 
 
 def summary(decisions):
-    """{q: [(verdict, [shapes])]}: the shapes grouped by their verdict on q, the decided verdicts
-    first (in the order met), all undecided ones as one group "undecided" at the end"""
+    """{q: [(verdict, [shapes])]} in QUANTITIES' order: the shapes grouped by their verdict on
+    q, the decided verdicts first (in the order met), the undecided ones as one group last"""
     out = {}
     for s, q, d in sorted(decisions, key=lambda v: v[0]):
         verdict = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
         groups = out.setdefault(q, {})
         groups.setdefault(verdict, []).append(s)
-    return {q: sorted(groups.items(), key=lambda g: g[0] == "undecided")
-            for q, groups in out.items()}
+    return {q: sorted(out[q].items(), key=lambda g: g[0] == "undecided")
+            for q in QUANTITIES if q in out}
 
 
 def line_of(shape):
