@@ -333,7 +333,7 @@ def claims(results, law, n):
                     "diagonal_maximum": sel.line_maximum("diagonal", rng),
                     "phi_difference": phi_differences(sel, selections.get((dr, law),
                                                                           Selection([]))),
-                    "crossings": crossings(sel)}
+                    "crossings": crossings(sel), "forces": forces(sel.deposits)}
                    for (dr, name), sel in selections.items() if name != law]
     out["forces"] = forces(base.deposits)
     out["force_mirror"] = mirror(base.deposits)

@@ -32,6 +32,11 @@ def forces_block(data):
     if lines is None:
         return ("No line of shapes has 3 shapes with two deposits with window means of the "
                 "force measures yet (sets `equilibrium`, `equilibrium_lines`).")
+    lines = dict(lines)    # then the other laws' lines at delta_r 0, named with their law
+    for entry in data.claims.get("laws", []):
+        if entry["delta_r"] == 0 and entry.get("forces"):
+            lines.update(("%s, %s" % (line, entry["law"]), f)
+                         for line, f in entry["forces"].items())
     per_shape, trends, notes = [], [], []
     for line, f in lines.items():
         per_shape += [[line, "%g" % r["eta"], "%g" % r["zeta"], "%g" % r["a/c"],
