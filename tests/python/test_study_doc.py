@@ -160,3 +160,25 @@ def test_the_other_laws_force_lines_are_listed():
               for line in e["forces"]]
     assert listed    # the viscous diagonal since its re-run
     assert all("| %s, %s |" % (line, law) in forces for line, law in listed)
+
+
+def test_the_jammed_limits_verdicts_follow_the_spheres_numbers():
+    """the Silbert rows (one per law at delta_r 0): the spheres' mean phi and Z recomputed from
+    deposits.csv, placed against the frictionless (0.64, 6) and infinite-friction (0.55, 4)
+    limits here, agree with the page's verdict"""
+    import csv
+    text = open(DOC).read()
+    rows = [r for r in csv.DictReader(open(os.path.join(RESULTS, "deposits.csv")))
+            if float(r["eta"]) == float(r["zeta"]) == 1.0 and float(r["delta_r"]) == 0.0
+            and int(r["N"]) == 3000 and not r["width"]]
+    for law in sorted({r["law"] for r in rows}):
+        phi = sum(float(r["phi"]) for r in rows if r["law"] == law) / \
+            sum(1 for r in rows if r["law"] == law)
+        z = sum(float(r["Z"]) for r in rows if r["law"] == law) / \
+            sum(1 for r in rows if r["law"] == law)
+        line = next(t for t in text.splitlines()
+                    if t.startswith("| Silbert 2010") and "spheres (%s)" % law in t)
+        expected = ("above the frictionless limit in both" if phi > 0.64 and z > 6 else
+                    "between the two limits in both" if 0.55 < phi < 0.64 and 4 < z < 6 else
+                    None)
+        assert expected and line.endswith("| %s |" % expected), (law, phi, z, line)

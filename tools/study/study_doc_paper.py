@@ -331,8 +331,6 @@ def paper_rows(data):
 
 def literature_rows(data):
     m = data.claims["maxima"]
-    p = data.base.quantity("phi")
-    z = data.base.quantity("Z")
     rows = []
     if "prolate" in m and "oblate" in m and "x_max" in m["prolate"] and "x_max" in m["oblate"]:
         pr, ob = m["prolate"], m["oblate"]
@@ -346,20 +344,28 @@ def literature_rows(data):
                         z_text((1 / ob["x_max"] - ZHOU[1]) / (eo / ob["x_max"] ** 2)), ZHOU[1]),
                      "errors of bootstrap and fit window in quadrature; the literature values "
                      "carry none here"])
-    top = max(p.values, key=p.mean)
-    rows.append(["Donev et al. 2004: jammed ellipsoids up to %g near 1.25:1:0.8" % DONEV_MAX,
-                 "highest deposit %s at %s (%s)" % (pm(p.mean(top), p.se(top), 4), shape(top),
-                                                    data.law),
-                 "deposits stay below the jammed packings, as expected"])
     (phi_hi, z_hi), (phi_lo, z_lo) = SPHERE_LIMITS["frictionless"], \
         SPHERE_LIMITS["infinite friction"]
-    sphere = (1.0, 1.0)
-    between = (phi_lo < p.mean(sphere) < phi_hi) and (z_lo < z.mean(sphere) < z_hi)
-    rows.append(["Silbert 2010: jammed spheres, phi %g and Z %g without friction, phi %g and Z "
-                 "%g at infinite friction" % (phi_hi, z_hi, phi_lo, z_lo),
-                 "spheres (%s, friction coefficient 0.5): phi %s, Z %s"
-                 % (data.law, pm(p.mean(sphere), p.se(sphere), 4),
-                    pm(z.mean(sphere), z.se(sphere), 2)),
-                 "between the two limits, as a finite friction puts them" if between else
-                 "outside the two limits"])
+    laws = sorted({k[1] for k in data.sels if k[0] == 0.0}, key=lambda law: law != data.law)
+    for law in laws:    # the default law first
+        p, z = data.sels[(0.0, law)].quantity("phi"), data.sels[(0.0, law)].quantity("Z")
+        top = max(p.values, key=p.mean)
+        rows.append(["Donev et al. 2004: jammed ellipsoids up to %g near 1.25:1:0.8" % DONEV_MAX,
+                     "highest deposit %s at %s (%s)" % (pm(p.mean(top), p.se(top), 4),
+                                                        shape(top), law),
+                     "below the jammed packings" if p.mean(top) + SIGMA * p.se(top) < DONEV_MAX
+                     else "not below the jammed packings at 3 sigma"])
+        sphere = (1.0, 1.0)
+        if sphere not in p.values:
+            continue
+        side = {(True, True): "above the frictionless limit in both",
+                (False, False): "between the two limits in both"}
+        above = (p.mean(sphere) > phi_hi, z.mean(sphere) > z_hi)
+        below = p.mean(sphere) < phi_lo or z.mean(sphere) < z_lo
+        rows.append(["Silbert 2010: jammed spheres, phi %g and Z %g without friction, phi %g "
+                     "and Z %g at infinite friction" % (phi_hi, z_hi, phi_lo, z_lo),
+                     "spheres (%s): phi %s, Z %s" % (law, pm(p.mean(sphere), p.se(sphere), 4),
+                                                     pm(z.mean(sphere), z.se(sphere), 2)),
+                     "below the infinite-friction limit" if below else
+                     side.get(above, "above the frictionless limit in one of phi and Z")])
     return rows
