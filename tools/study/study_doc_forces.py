@@ -18,27 +18,33 @@ def mirror_meaning(m):
     return MIRROR_MEANING if m["r"] < 0 else "K0 and a_f rise together"
 
 
-def mirror_text(m):
+def mirror_text(m, law):
     if m is None:
-        return "K0 against a_f seed by seed: fewer than 3 degrees of freedom."
-    return ("K0 against a_f seed by seed (each about its shape's mean, %d deposits of %d "
+        return "K0 against a_f seed by seed (%s): fewer than 3 degrees of freedom." % law
+    return ("K0 against a_f seed by seed (%s; each about its shape's mean, %d deposits of %d "
             "shapes): r = %.2f (p = %.1g, t with %d dof): %s."
-            % (m["deposits"], m["shapes"], m["r"], m["p"], m["dof"], mirror_meaning(m)))
+            % (law, m["deposits"], m["shapes"], m["r"], m["p"], m["dof"], mirror_meaning(m)))
+
+
+def force_lines(claims):
+    """[(label, name, f)]: the default law's force lines (claims.json `forces`), then the
+    other laws' at delta_r 0 (their `laws` entries), named with their law"""
+    out = [(line, LINE_NAMES[line], f) for line, f in (claims.get("forces") or {}).items()]
+    for entry in claims.get("laws", []):
+        if entry["delta_r"] == 0 and entry.get("forces"):
+            out += [("%s, %s" % (line, entry["law"]),
+                     "%s, %s" % (LINE_NAMES[line], entry["law"]), f)
+                    for line, f in entry["forces"].items()]
+    return out
 
 
 def forces_block(data):
     """the force measures along the lines of shapes and their trends (claims.json `forces`)"""
-    lines = data.claims.get("forces")
-    if lines is None:
+    if data.claims.get("forces") is None:
         return ("No line of shapes has 3 shapes with two deposits with window means of the "
                 "force measures yet (sets `equilibrium`, `equilibrium_lines`).")
-    lines = dict(lines)    # then the other laws' lines at delta_r 0, named with their law
-    for entry in data.claims.get("laws", []):
-        if entry["delta_r"] == 0 and entry.get("forces"):
-            lines.update(("%s, %s" % (line, entry["law"]), f)
-                         for line, f in entry["forces"].items())
     per_shape, trends, notes = [], [], []
-    for line, f in lines.items():
+    for line, _, f in force_lines(data.claims):
         per_shape += [[line, "%g" % r["eta"], "%g" % r["zeta"], "%g" % r["a/c"],
                        "%d" % r["seeds"]] + [pm(r[q]["mean"], r[q]["se"], 3) for q in MEASURES]
                       for r in f["per_shape"]]
@@ -62,10 +68,10 @@ def forces_block(data):
                                "verdict", "thinnest - roundest", "significance", "verdict",
                                "thinnest - largest (a saturating measure)"], trends))
     return text + "\n\n" + " ".join(
-        ["%s." % n for n in notes] + [mirror_text(data.claims.get("force_mirror"))])
+        ["%s." % n for n in notes] + [mirror_text(data.claims.get("force_mirror"), data.law)])
 
 
-def force_line_text(line, f):
+def force_line_text(name, f):
     """one line's force-weighted anisotropy a_n + a_f and its own part a_f against a/c"""
     t = f["trends"]
     total = t["a_total"]["slope_per_unit_a/c"]
@@ -74,7 +80,7 @@ def force_line_text(line, f):
     seeds = sorted({r["seeds"] for r in f["per_shape"]})
     return ("%s, %d deposits (%s seeds per shape): force-weighted anisotropy a_n + a_f "
             "%s at %s, %s at %s, slope %s per unit a/c (%s); the forces' own part a_f: %s"
-            % (LINE_NAMES[line], f["deposits"],
+            % (name, f["deposits"],
                "-".join("%d" % k for k in (seeds[0], seeds[-1])) if len(seeds) > 1
                else "%d" % seeds[0],
                pm(first["a_total"]["mean"], first["a_total"]["se"], 3),
@@ -89,17 +95,17 @@ def force_line_text(line, f):
 def forces_row(data):
     claim = ("abstract: the contact forces are increasingly preferred along the vertical as "
              "the shape deviates from a sphere")
-    lines = data.claims.get("forces") or {}
-    if "diagonal" not in lines:
+    if "diagonal" not in (data.claims.get("forces") or {}):
         return [claim, "not measured: fewer than 3 diagonal shapes have two deposits with "
                 "window means of the force measures", "undecided"]
+    lines = force_lines(data.claims)
     verdicts = []
-    for line, f in lines.items():
+    for _, name, f in lines:
         t = f["trends"]
         verdicts.append("%s: increasingly vertical: %s; faster than the contact normals' "
                         "anisotropy (a_f): %s; K0: %s"
-                        % (LINE_NAMES[line], shape_of_trend(t["a_total"]),
+                        % (name, shape_of_trend(t["a_total"]),
                            shape_of_trend(t["a_f"]) if "a_f" in t else "-",
                            shape_of_trend(t["K0"])))
-    return [claim, "; ".join(force_line_text(line, f) for line, f in lines.items()),
+    return [claim, "; ".join(force_line_text(name, f) for _, name, f in lines),
             "; ".join(verdicts)]

@@ -1,11 +1,31 @@
 """doc/study.md's spheres' contact normals near the floor and above it (tools/study/study_doc.py),
 from results/study/sphere_slabs.csv (study_sphere_slabs.py): per law and slab the seeds' mean
-deviation from isotropy in each bin with its counting error, and chi^2 against isotropy."""
+deviation from isotropy in each bin with its Poisson error (scaled where the seeds scatter
+beyond counting), the seeds' consistency, and Pearson's chi^2 against isotropy."""
 import csv
 import os
 
+from scipy import stats
+
 from study_doc_claims import table
 from study_sphere_slabs import SLABS, sphere_slabs_summary
+
+P_3SIGMA = 2 * stats.norm.sf(3.0)    # two-sided, 0.0027
+
+
+def seeds_cell(m):
+    if m["birge"] is None:
+        return "one seed: not tested"
+    return "chi^2 %.1f on %d dof (p %.2g)%s" % (
+        m["seeds_chi2"], m["seeds_dof"], stats.chi2.sf(m["seeds_chi2"], m["seeds_dof"]),
+        "; errors x %.2f" % m["birge"] if m["birge"] > 1 else "")
+
+
+def verdict(m):
+    """isotropy rejected at 3 sigma (p < 0.0027) or not; one seed cannot tell its own scatter"""
+    if m["birge"] is None:
+        return "undecided (one seed)"
+    return "not isotropic" if m["p"] < P_3SIGMA else "undecided"
 
 
 def sphere_slabs_block(results):
@@ -20,8 +40,11 @@ def sphere_slabs_block(results):
              ",".join("%d" % s for s in summary[(law, slab)]["seeds"])]
             + ["%+.0f +- %.0f" % (100 * d, 100 * e) for d, e in
                zip(summary[(law, slab)]["deviation"], summary[(law, slab)]["se"])]
-            + ["%.0f (%d dof), p %.0e" % (summary[(law, slab)]["chi2"],
-                                          summary[(law, slab)]["dof"], summary[(law, slab)]["p"])]
+            + [seeds_cell(summary[(law, slab)]),
+               "%.0f (%d dof), p %.0e: %s" % (summary[(law, slab)]["chi2"],
+                                              summary[(law, slab)]["dof"],
+                                              summary[(law, slab)]["p"],
+                                              verdict(summary[(law, slab)]))]
             for law, slab in keys]
     ratio = "; ".join("%s %.1f" % (law, summary[(law, "low")]["chi2"]
                                    / summary[(law, "high")]["chi2"])
@@ -29,4 +52,4 @@ def sphere_slabs_block(results):
                       if (law, "low") in summary and (law, "high") in summary)
     return ("chi^2 against isotropy near the floor over chi^2 above it: %s.\n\n" % ratio
             + table(["law", "slab", "seeds"] + ["%.2f (%%)" % t for t in theta]
-                    + ["chi^2 (counting errors)"], rows))
+                    + ["seeds against each other", "chi^2 against isotropy"], rows))

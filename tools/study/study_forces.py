@@ -16,7 +16,8 @@ Only deposits whose packing.dat gives these as means over a window after rest co
 rings (+-3.5 % in sigma_zz), and those snapshots are left out here (their phi, Z and
 histograms are not).
 
-Along each line of shapes of the default law at delta_r 0, spheres included: the diagonal
+Along each line of shapes of one law at delta_r 0 (the default law's in claims.json `forces`,
+another law's in its `laws` entry), spheres included: the diagonal
 eta = zeta, the prolate line zeta = 1 and the oblate line eta = 1, with the seed SD pooled per
 group of shapes over every shape of the selection (tools/study/study_stats.py; one error per shape,
 whichever line it is read on): per shape the mean and standard error of each; the weighted

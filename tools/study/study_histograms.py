@@ -10,9 +10,10 @@
   the crossing's error from the per-bin errors and the slope of the difference.
 * `sphere_isotropy`: the sphere's contact normals against 1/(4 pi): per bin of the upper half
   (the curve is symmetric about pi/2 by construction) the relative deviation with its
-  error from the per-bin seed SD pooled over the sphere's deposits of its law's selections, the
-  largest deviation and chi^2 over the bins; the same chi^2 with counting errors (a bin's
-  contacts ~ its fraction x Nslab Z) as a check that does not lean on a few seeds.
+  error from the per-bin seed SD pooled over the sphere's deposits of its law's selections
+  (never below the bin's counting error), the largest deviation and chi^2 over the bins;
+  Pearson's chi^2 of the counts (a bin's contacts ~ its fraction x Nslab Z) as a check that
+  does not lean on a few seeds.
 """
 import math
 
@@ -161,11 +162,14 @@ def sphere_isotropy(selections, key):
         return None    # no sphere with two seeds: no error
     sd = np.array([pool([r[:, b] for r in rel.values()])[0] for b in range(int(half.sum()))])
     mean, n = rel[key].mean(axis=0), len(rel[key])
-    se = sd / math.sqrt(n)
-    # cross-check: counting errors, counts = fraction * samples, samples ~ Nslab Z
+    # cross-check: counting errors, counts = fraction * samples, samples ~ Nslab Z; the
+    # Poisson error of d = counts / expected - 1 is sqrt(counts) / expected = (1 + d) / sqrt
     known = all(d.get("Nslab") and d.get("Z") for d in spheres[key])
     counts = sum(np.asarray(d[name][2])[half] * float(d["Nslab"]) * float(d["Z"])
                  for d in spheres[key]) if known else None
+    se_counting = (1 + mean) / np.sqrt(counts) if known else None
+    # a seed SD of few dof can come out small by chance in a bin: never below counting
+    se = sd / math.sqrt(n) if not known else np.maximum(sd / math.sqrt(n), se_counting)
     z = mean / se
 
     def bin_entry(k):
@@ -173,10 +177,11 @@ def sphere_isotropy(selections, key):
                 "z": float(z[k]), "z_equivalent": equivalent_sigma(float(z[k]), dof)}
     chi2 = float(np.sum(z ** 2))
     bins = int(half.sum()) - 1    # the normalisation fixes one combination of the bins
-    chi2_counting = float(np.sum(mean ** 2 * counts)) if known else None
+    # Pearson's chi^2, sum (counts - expected)^2 / expected
+    chi2_counting = float(np.sum(mean ** 2 * counts / (1 + mean))) if known else None
     return {"seeds": n, "dof_of_the_errors": dof, "theta": theta[half].tolist(),
             "deviation": mean.tolist(), "se": se.tolist(),
-            "se_counting": (1 / np.sqrt(counts)).tolist() if known else None,
+            "se_counting": se_counting.tolist() if known else None,
             "most_significant": bin_entry(int(np.argmax(np.abs(z)))),
             "largest": bin_entry(int(np.argmax(np.abs(mean)))),
             "chi2_counting": chi2_counting,

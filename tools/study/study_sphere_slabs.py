@@ -10,8 +10,8 @@ measures the contact normals in a low slab, z in [1, 3.5] d, which holds the lay
 orders (the density profile's oscillations), and a high one, [3.5, 6] d. Per bin of the upper
 half (the curve is symmetric about pi/2 by construction) the csv keeps 4 pi P - 1 and the
 bin's contacts (its fraction x the samples), from which sphere_slabs_summary gives per law and
-slab the seeds' mean deviation, its counting error (1 / sqrt(contacts), Poisson: contacts in
-ordered layers are correlated, so it is a lower bound) and chi^2 against isotropy.
+slab the pooled deviation, its Poisson error and Pearson's chi^2 against isotropy, scaled by
+the Birge ratio where the seeds scatter beyond counting.
 """
 import argparse
 import csv
@@ -66,21 +66,35 @@ def measure(run_dir):
 
 
 def sphere_slabs_summary(rows):
-    """{(law, slab): {seeds, theta, deviation (seeds' mean), se (counting), chi2, dof, p}}"""
+    """{(law, slab): {seeds, theta, deviation, se, chi2, dof, p, seeds_chi2, seeds_dof, birge}}:
+    the seeds' counts pooled per bin, deviation = counts / expected - 1 (expected: the
+    isotropic share, counts / (1 + a seed's deviation), summed), its Poisson error sqrt(counts)
+    / expected, Pearson's chi^2 against isotropy; the seeds against their pooled deviation
+    (seeds_chi2 on (seeds - 1) (bins - 1) dof) and, where they scatter beyond counting, the
+    Birge ratio that scales the errors and divides chi^2 before p"""
     groups = {}
     for r in rows:
         groups.setdefault((r["law"], r["slab"]), {}).setdefault(int(r["seed"]), []).append(r)
     out = {}
     for key, seeds in groups.items():
         dev = np.array([[float(r["deviation"]) for r in v] for v in seeds.values()])
-        contacts = np.array([[float(r["contacts"]) for r in v] for v in seeds.values()]).sum(0)
-        mean, se = dev.mean(axis=0), 1 / np.sqrt(contacts)
-        chi2 = float(np.sum((mean / se) ** 2))
+        counts = np.array([[float(r["contacts"]) for r in v] for v in seeds.values()])
+        expected = counts / (1 + dev)
+        mean = counts.sum(0) / expected.sum(0) - 1
+        se = np.sqrt(counts.sum(0)) / expected.sum(0)
         dof = dev.shape[1] - 1    # the normalisation fixes one combination of the bins
+        fitted = (1 + mean) * expected    # each seed's counts at the pooled deviation
+        seeds_chi2 = float(np.sum((counts - fitted) ** 2 / fitted))
+        seeds_dof = (len(seeds) - 1) * dof
+        birge = math.sqrt(seeds_chi2 / seeds_dof) if seeds_dof else None
+        scale = max(1.0, birge or 1.0)
+        chi2 = float(np.sum((counts.sum(0) - expected.sum(0)) ** 2 / expected.sum(0)))
         out[key] = {"seeds": sorted(seeds), "theta": [float(r["theta"]) for r in
                                                        next(iter(seeds.values()))],
-                    "deviation": mean.tolist(), "se": se.tolist(), "chi2": chi2, "dof": dof,
-                    "p": float(stats.chi2.sf(chi2, dof))}
+                    "deviation": mean.tolist(), "se": (scale * se).tolist(),
+                    "chi2": chi2 / scale ** 2, "dof": dof,
+                    "p": float(stats.chi2.sf(chi2 / scale ** 2, dof)),
+                    "seeds_chi2": seeds_chi2, "seeds_dof": seeds_dof, "birge": birge}
     return out
 
 
