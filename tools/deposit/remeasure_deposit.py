@@ -58,6 +58,26 @@ def write_data(dump, path):
             f.write(f"{i + 1} " + " ".join("%.17g" % v for v in diameters + quat) + "\n")
 
 
+def contacts_instance(dump):
+    """a LAMMPS instance holding the runner's dump, at rest, with the pair's overlaps as its
+    contacts (the law's constants do not matter): for computes evaluated at run 0"""
+    with tempfile.TemporaryDirectory() as tmp:
+        data = os.path.join(tmp, "deposit.data")
+        write_data(dump, data)
+        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        lmp.commands_string(f"""
+            units lj
+            atom_style ellipsoid
+            boundary p p f
+            comm_modify vel yes
+            read_data {data}
+            pair_style granular/ellipsoid
+            pair_coeff * * hertz 1e4 0 tangential none
+            neighbor 0.2 bin
+            """)
+    return lmp
+
+
 def read_keys(path):
     """packing.dat as an ordered list of (key, value text)"""
     pairs = []

@@ -11,12 +11,9 @@ packing.dat (doc/CHANGELOG.md, 2026-12-01, "The pour protocol against the protoc
 """
 import os
 import sys
-import tempfile
-
-from lammps import lammps
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from remeasure_deposit import write_data    # noqa: E402
+from remeasure_deposit import contacts_instance    # noqa: E402
 
 SLABS = [("bulk [1, 4]", "1.0 4.0 rattler 2"),
          ("auto", "auto bottom 1 top 2 rattler 2"),
@@ -24,28 +21,15 @@ SLABS = [("bulk [1, 4]", "1.0 4.0 rattler 2"),
 
 
 def remeasure(run_dir):
-    with tempfile.TemporaryDirectory() as tmp:
-        data = os.path.join(tmp, "deposit.data")
-        write_data(os.path.join(run_dir, "deposit.dump"), data)
-        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-        lmp.commands_string(f"""
-            units lj
-            atom_style ellipsoid
-            boundary p p f
-            comm_modify vel yes
-            read_data {data}
-            pair_style granular/ellipsoid
-            pair_coeff * * hertz 1e4 0 tangential none
-            neighbor 0.2 bin
-            """)
-        for k, (_, args) in enumerate(SLABS):
-            lmp.command(f"compute p{k} all packing/ellipsoid {args}")
-        lmp.command("run 0 post no")
-        out = []
-        for k, (name, _) in enumerate(SLABS):
-            v = [lmp.extract_compute(f"p{k}", 0, 1)[j] for j in range(6)]
-            out.append("%s: phi %.4f Z %.3f (z %.2f-%.2f)" % (name, v[0], v[2], v[4], v[5]))
-        lmp.close()
+    lmp = contacts_instance(os.path.join(run_dir, "deposit.dump"))
+    for k, (_, args) in enumerate(SLABS):
+        lmp.command(f"compute p{k} all packing/ellipsoid {args}")
+    lmp.command("run 0 post no")
+    out = []
+    for k, (name, _) in enumerate(SLABS):
+        v = [lmp.extract_compute(f"p{k}", 0, 1)[j] for j in range(6)]
+        out.append("%s: phi %.4f Z %.3f (z %.2f-%.2f)" % (name, v[0], v[2], v[4], v[5]))
+    lmp.close()
     return out
 
 

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from study_stats import SIGMA
+from study_stats import CHANCE_P, SIGMA
 from study_verdicts import PAPER_WORDS
 
 SIG = "%.1f sigma"
@@ -257,7 +257,7 @@ def sphere_rows(v):
                      % (z_cell(dict(sig, dof=s["dof_of_the_errors"])), s["p_isotropic"],
                         s["chi2_counting"], s["p_counting"]),
                      "not isotropic (both chi^2 beyond 3 sigma)"
-                     if max(s["p_isotropic"], s["p_counting"]) < 0.0027 else
+                     if max(s["p_isotropic"], s["p_counting"]) < CHANCE_P else
                      "undecided: one chi^2 is within 3 sigma"])
     return rows
 

