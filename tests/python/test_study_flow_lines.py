@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from study_flow_lines import deposit_row, shape_means, summary, verdicts
+from study_flow_lines import deposit_cost, deposit_row, shape_means, summary, verdicts
 
 
 def bracket(k, err):
@@ -100,3 +100,17 @@ def test_the_summary_groups_shapes_by_verdict():
                            ("undecided", [(1.0, 3.0), (3.0, 1.0)])]
     assert got["anisotropy"] == [("k_xx > k_zz", [(2.0, 2.0)]),
                                  ("undecided", [(1.0, 1.0), (1.0, 3.0), (3.0, 1.0)])]
+
+
+def test_the_cost_sums_every_solve_once():
+    """each resolution's seconds (already summed over its offsets) over directions and
+    resolutions: a run resumed solve by solve reads its earlier solves' times from the kept
+    solves, so no segment is lost; without the solves there is no cost, not a zero"""
+    resolutions = [{"seconds": {"xx": 300.0, "zz": 200.0},
+                    "solver_cpu_seconds": {"xx": 250.0, "zz": 150.0}},
+                   {"seconds": {"xx": 900.0, "zz": 700.0},
+                    "solver_cpu_seconds": {"xx": 400.0, "zz": 380.0}}]
+    assert deposit_cost({"resolutions": resolutions}) == {
+        "solve_seconds": 2100.0, "solver_cpu_seconds": 1180.0}
+    assert deposit_cost({}) == {"solve_seconds": "", "solver_cpu_seconds": ""}
+    assert ROWS[0]["solve_seconds"] == ""

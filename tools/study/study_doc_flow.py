@@ -51,6 +51,16 @@ def summary_text(decisions):
     return "Summary (verdicts at 3 sigma, the table last): " + " ".join(parts)
 
 
+def cost_text(rows):
+    """the deposits' cost: median and range of their solves' summed wall and CPU minutes"""
+    def minutes(key):
+        m = np.array([r[key] for r in rows if r[key] != ""]) / 60.0
+        return "%.0f min (%.0f to %.0f)" % (np.median(m), m.min(), m.max())
+    return ("Cost per deposit, summed over its solves (median, range): the solver's CPU %s; "
+            "wall time %s, with the meshing and the waits of a machine shared with other runs."
+            % (minutes("solver_cpu_seconds"), minutes("solve_seconds")))
+
+
 def flow_lines_block(results):
     """results: the study's results folder; the flow solves' lie beside it"""
     rows = load_rows(os.path.join(os.path.dirname(os.path.normpath(results)), "flow_lines"))
@@ -75,6 +85,7 @@ def flow_lines_block(results):
                                        if (r["eta"], r["zeta"]) == s])]
                     + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
     decisions = verdicts(means)
+    head += " " + cost_text(rows)
     decided = table(["eta, zeta", "quantity", "against", "difference", "z", "verdict"],
                     [[shape_text(s), NAMES[q], QUANTITIES[q][1],
                       ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],

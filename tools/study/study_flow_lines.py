@@ -2,7 +2,8 @@
 lines"; the solves: tools/pores/pore_flow_lines.py, one results/flow_lines/<run>.json per
 deposit).
 
-    deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC with their errors
+    deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC with their errors,
+                         and its cost (deposit_cost)
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
     summary(verdicts) -> per quantity the shapes of each verdict, undecided ones last
@@ -44,7 +45,19 @@ def deposit_row(r):
     for q, key in EXTRAPOLATED.items():    # the bracket's half-width
         e = k.get("extrapolation", {}).get(key)
         row[q + "_bias"] = "" if e is None else 0.5 * abs(e["k0_fixed_p"] - e["k_finest"])
+    row.update(deposit_cost(k))
     return row
+
+
+def deposit_cost(flow):
+    """seconds summed over the deposit's solves (each resolution, direction and offset), from
+    the solves themselves, so that a run resumed solve by solve counts each solve once:
+    solve_seconds the wall time with the meshing (and any wait for a shared machine),
+    solver_cpu_seconds simpleFoam's CPU time; "" without the solves"""
+    resolutions = flow.get("resolutions")
+    return {name: "" if not resolutions else sum(sum(r[key].values()) for r in resolutions)
+            for name, key in (("solve_seconds", "seconds"),
+                              ("solver_cpu_seconds", "solver_cpu_seconds"))}
 
 
 def relative_bias(row, q):
