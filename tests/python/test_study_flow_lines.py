@@ -5,7 +5,8 @@ import math
 
 import pytest
 
-from study_flow_lines import deposit_cost, deposit_row, shape_means, summary, verdicts
+from study_flow_lines import (deposit_cost, deposit_row, prolate_against_oblate, shape_means,
+                              summary, verdicts)
 
 
 def bracket(k, err):
@@ -75,6 +76,28 @@ def test_verdicts_against_the_spheres_and_isotropy():
     assert v[((2.0, 2.0), "anisotropy")]["verdict"] == "k_xx > k_zz"
     assert v[((1.0, 1.0), "anisotropy")]["verdict"].startswith("undecided")
     assert ((1.0, 1.0), "k_zz") not in v
+
+
+def test_prolate_against_oblate_at_equal_aspect_ratio():
+    """(a, 1) less (1, a) where both lines have a: here a = 3 only, the prolate pair of seeds
+    against the oblate single seed, its z by hand; then a decided pair"""
+    got = {(a, q): d for a, q, d in prolate_against_oblate(shape_means(ROWS))}
+    assert {a for a, _ in got} == {3.0}
+    sd = sd_by_hand()
+    d = got[(3.0, "k_zz")]
+    stat = math.hypot(1.11e-3 * sd / math.sqrt(2), 1.05e-3 * sd)
+    sys = math.hypot(0.01 * 1.11e-3, 0.03 * 1.05e-3)
+    assert d["difference"] == pytest.approx(0.06e-3, rel=1e-9)
+    assert d["z"] == pytest.approx(0.06e-3 / math.hypot(stat, sys), rel=1e-9)
+    assert d["verdict"].startswith("undecided at 1-2 seeds")
+    # plates lying flat: k_xx / k_zz about 1.5 on the oblate line, 1.1 on the prolate line
+    rows = ROWS[:2] + [row(2, 1, 1, 1.00e-3, 1.10e-3), row(2, 1, 2, 1.02e-3, 1.122e-3),
+                       row(1, 2, 1, 0.80e-3, 1.20e-3), row(1, 2, 2, 0.82e-3, 1.25e-3)]
+    got = {(a, q): d for a, q, d in prolate_against_oblate(shape_means(rows))}
+    d = got[(2.0, "anisotropy")]
+    assert d["difference"] == pytest.approx(1.1 - (1.5 + 1.25 / 0.82) / 2, rel=1e-9)
+    assert d["stat"] > 0 and d["z"] < -3
+    assert d["verdict"] == "higher on the oblate line"
 
 
 def test_without_an_error_estimate_undecided():

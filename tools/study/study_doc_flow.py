@@ -8,7 +8,8 @@ import os
 import numpy as np
 
 from study_doc_claims import table, z_cell
-from study_flow_lines import QUANTITIES, deposit_row, line_of, shape_means, summary, verdicts
+from study_flow_lines import (QUANTITIES, deposit_row, line_of, prolate_against_oblate,
+                              shape_means, summary, verdicts)
 from study_stats import LINES
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
@@ -48,7 +49,22 @@ def summary_text(decisions):
             "%s at %s" % (verdict, ", ".join(
                 "the spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s) for s in shapes))
             for verdict, shapes in groups)))
-    return "Summary (verdicts at 3 sigma, the table last): " + " ".join(parts)
+    return "Summary (verdicts at 3 sigma, the tables last): " + " ".join(parts)
+
+
+def pairs_text(pairs):
+    """one sentence per quantity: at which aspect ratios the prolate and oblate shapes differ"""
+    if not pairs:
+        return "Prolate against oblate: no aspect ratio solved on both lines yet."
+    groups = {}
+    for a, q, d in pairs:
+        verdict = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
+        groups.setdefault(q, {}).setdefault(verdict, []).append("%g" % a)
+    return "Prolate (a, 1) against oblate (1, a) at equal a: " + " ".join(
+        "%s: %s." % (NAMES[q], "; ".join(
+            "%s at a = %s" % (v, ", ".join(a)) for v, a in
+            sorted(groups[q].items(), key=lambda g: g[0] == "undecided")))
+        for q in QUANTITIES if q in groups)
 
 
 def cost_text(rows):
@@ -91,5 +107,13 @@ def flow_lines_block(results):
                       ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
                       z_cell(d), d["verdict"]]
                      for s, q, d in sorted(decisions, key=lambda v: (v[1], v[0]))])
-    return "\n\n".join([summary_text(decisions), head, values, decided])
+    pairs = prolate_against_oblate(means)
+    blocks = [summary_text(decisions), pairs_text(pairs), head, values, decided]
+    if pairs:
+        blocks.append(table(["a", "quantity", "prolate (a, 1) - oblate (1, a)", "z", "verdict"],
+                            [["%g" % a, NAMES[q],
+                              ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
+                              z_cell(d), d["verdict"]]
+                             for a, q, d in sorted(pairs, key=lambda v: (v[1], v[0]))]))
+    return "\n\n".join(blocks)
 

@@ -6,6 +6,7 @@ deposit).
                          and its cost (deposit_cost)
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
+    prolate_against_oblate(means) -> at equal aspect ratio, the prolate shape less the oblate
     summary(verdicts) -> per quantity the shapes of each verdict, undecided ones last
 
 Errors. A deposit's k carries the error of the extrapolation to a vanishing voxel
@@ -101,33 +102,47 @@ def verdicts(means):
     shapes = sorted(s for s in means if s != "pooled")
     for q, (_, against) in QUANTITIES.items():
         for s in shapes:
-            m = means[s][q]
-            if against == "spheres":
-                if s == SPHERES or SPHERES not in means:
-                    continue
-                ref = means[SPHERES][q]
-                diff = m["mean"] - ref["mean"]
-                parts = [(m["stat"], len(means[s]["seeds"])),
-                         (ref["stat"], len(means[SPHERES]["seeds"]))]
-                biases = (m["sys"], ref["sys"])
-                dof = min(m["dof"], ref["dof"])
-                yes, no = "higher than the spheres'", "lower than the spheres'"
-            else:
-                diff = m["mean"] - 1.0
-                parts = [(m["stat"], len(means[s]["seeds"]))]
-                biases, dof = (m["sys"],), m["dof"]
-                yes, no = "k_xx > k_zz", "k_xx < k_zz"
-            known = None not in biases and all(p[0] is not None for p in parts)
-            stat = math.sqrt(sum(p[0] ** 2 for p in parts)) if known else None
-            sys = math.sqrt(sum(b ** 2 for b in biases)) if known else 0.0
-            z = significance(diff, stat, sys)
-            compared = (s, SPHERES) if against == "spheres" else (s,)
-            seeds = "-".join(sorted({"%d" % len(means[t]["seeds"]) for t in compared}))
-            needed = seeds_needed(diff, parts, sys)
-            d = decide(z, needed, seeds, yes, no, dof)
-            d.update(difference=diff, stat=stat, sys=sys)
-            out.append((s, q, d))
+            if against == "isotropy":
+                out.append((s, q, compare(means, q, s, None)))
+            elif s != SPHERES and SPHERES in means:
+                out.append((s, q, compare(means, q, s, SPHERES)))
     return out
+
+
+def prolate_against_oblate(means):
+    """[(aspect ratio, q, decision)]: at each aspect ratio solved on both lines, the prolate
+    shape (a, 1) less the oblate one (1, a)"""
+    ratios = sorted(s[0] for s in means if s != "pooled" and s[1] == 1.0 and s[0] > 1.0
+                    and (1.0, s[0]) in means)
+    return [(a, q, compare(means, q, (a, 1.0), (1.0, a), ("higher on the prolate line",
+                                                           "higher on the oblate line")))
+            for q in QUANTITIES for a in ratios]
+
+
+def compare(means, q, s, ref, words=None):
+    """shape s's mean of q less ref's (None: less 1, isotropy), with its statistical and
+    systematic errors and the verdict"""
+    m = means[s][q]
+    parts, biases = [(m["stat"], len(means[s]["seeds"]))], [m["sys"]]
+    dof, compared = m["dof"], [s]
+    if ref is None:
+        diff = m["mean"] - 1.0
+        words = words or ("k_xx > k_zz", "k_xx < k_zz")
+    else:
+        r = means[ref][q]
+        diff = m["mean"] - r["mean"]
+        parts.append((r["stat"], len(means[ref]["seeds"])))
+        biases.append(r["sys"])
+        dof, compared = min(dof, r["dof"]), [s, ref]
+        words = words or ("higher than the spheres'", "lower than the spheres'")
+    known = None not in biases and all(p[0] is not None for p in parts)
+    stat = math.sqrt(sum(p[0] ** 2 for p in parts)) if known else None
+    sys = math.sqrt(sum(b ** 2 for b in biases)) if known else 0.0
+    seeds = "-".join(sorted({"%d" % len(means[t]["seeds"]) for t in compared}))
+    d = decide(significance(diff, stat, sys), seeds_needed(diff, parts, sys), seeds, *words,
+               dof)
+    d.update(difference=diff, stat=stat, sys=sys)
+    return d
 
 
 def summary(decisions):
