@@ -137,3 +137,29 @@ def test_the_cost_sums_every_solve_once():
         "solve_seconds": 2100.0, "solver_cpu_seconds": 1180.0}
     assert deposit_cost({}) == {"solve_seconds": "", "solver_cpu_seconds": ""}
     assert ROWS[0]["solve_seconds"] == ""
+
+
+def test_the_summary_rows_of_the_findings(monkeypatch):
+    """study.md's summary of findings: per quantity the spheres and each line's most
+    aspherical shape with the combined error, the shapes counted by verdict (the verdicts
+    above), and the prolate against the oblate anisotropy at equal a"""
+    import study_doc_flow
+    rows = ROWS + [row(2, 1, 1, 1.00e-3, 1.10e-3), row(2, 1, 2, 1.02e-3, 1.122e-3),
+                   row(1, 2, 1, 0.80e-3, 1.20e-3), row(1, 2, 2, 0.82e-3, 1.25e-3)]
+    monkeypatch.setattr(study_doc_flow, "flow_rows", lambda results: rows)
+    got = {r[0].split(" (flow solve")[0]: r[1:] for r in study_doc_flow.summary_rows("x")}
+    cells, verdict = got["k_zz in 1e-4 d^2"]
+    assert [c.rsplit(" ", 3)[0] for c in cells.split("; ")] == [
+        "spheres", "(2, 2)", "(3, 1)", "(1, 3)"]    # the diagonal, prolate, oblate ends
+    m = shape_means(rows)[(2.0, 2.0)]["k_zz"]
+    assert cells.split("; ")[1] == "(2, 2) %.2f +- %.2f" % (
+        1e4 * m["mean"], 1e4 * math.hypot(m["stat"], m["sys"]))
+    assert verdict.endswith("undecided in 3 of 5 shapes")
+    assert "higher than the spheres' at (2, 2)" in verdict
+    cells, verdict = got["k_xx / k_zz"]
+    assert verdict == "k_xx > k_zz at (1, 2), (2, 1), (2, 2); undecided in 3 of 6 shapes"
+    cells, verdict = got["k_xx / k_zz: prolate (a, 1) - oblate (1, a)"]
+    assert cells.startswith("a = 2 -0.41") and cells.split("; ")[1].startswith("a = 3 ")
+    assert verdict == "higher on the oblate line at a = 2; undecided in 1"
+    monkeypatch.setattr(study_doc_flow, "flow_rows", lambda results: [])
+    assert study_doc_flow.summary_rows("x") == []

@@ -3,14 +3,15 @@ defaults per shape (seeds' mean, statistical +- extrapolation error) and the ver
 (study_flow_lines.py), from results/flow_lines/<run>.json beside the study's results."""
 import glob
 import json
+import math
 import os
 
 import numpy as np
 
-from study_doc_claims import table, z_cell
+from study_doc_claims import pm, signed, table, z_cell
 from study_flow_lines import (QUANTITIES, deposit_row, line_of, prolate_against_oblate,
                               shape_means, summary, verdicts)
-from study_stats import LINES
+from study_stats import LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
 NAMES = {"k_zz": "k_zz", "k_xx": "k_xx", "anisotropy": "k_xx / k_zz",
@@ -77,9 +78,65 @@ def cost_text(rows):
             % (minutes("solver_cpu_seconds"), minutes("solve_seconds")))
 
 
+def flow_rows(results):
+    """the solved deposits' rows; results: the study's results folder, the flow solves' lie
+    beside it"""
+    return load_rows(os.path.join(os.path.dirname(os.path.normpath(results)), "flow_lines"))
+
+
+def combined(m, q):
+    """mean +- statistical and systematic error combined, in SCALE's units"""
+    err = None if m["stat"] is None else math.hypot(m["stat"], m["sys"] or 0.0) / SCALE[q]
+    return pm(m["mean"] / SCALE[q], err, DIGITS[q])
+
+
+def grouped(groups, of_what):
+    """'verdict at a, b; undecided in n' from [(verdict, [names])]"""
+    return "; ".join("undecided in %d" % len(names) if v == "undecided" else
+                     "%s at %s" % (v, ", ".join(names)) for v, names in groups) + of_what
+
+
+def summary_rows(results):
+    """the summary of findings' rows of the flow solve: per quantity the spheres and each line's
+    most aspherical shape solved (mean +- its combined error), the shapes grouped by verdict;
+    k_xx / k_zz of the prolate against the oblate shape at equal aspect ratio"""
+    rows = flow_rows(results)
+    if not rows:
+        return []
+    means = shape_means(rows)
+    shapes = [s for s in means if s != "pooled"]
+    aspherical = [s for s in shapes if s != (1.0, 1.0)]
+    ends = [(1.0, 1.0)] if (1.0, 1.0) in means else []
+    ends += list(dict.fromkeys(    # in LINES' order, the diagonal's spheres-only end once
+        max((s for s in aspherical if on_line(line, *s)), key=lambda s: s[0] * s[1])
+        for line in LINES if any(on_line(line, *s) for s in aspherical)))
+    seeds = "-".join(map(str, sorted({len(means[s]["seeds"]) for s in shapes})))
+    out = []
+    for q, groups in summary(verdicts(means)).items():
+        named = [(v, ["(%s)" % shape_text(s) for s in ss]) for v, ss in groups]
+        out.append(["%s%s (flow solve, %s seeds per shape) against %s; the spheres and each "
+                    "line's end" % (NAMES[q], " in 1e-4 d^2" if SCALE[q] != 1.0 else "", seeds,
+                                    QUANTITIES[q][1]),
+                    "; ".join("%s %s" % ("spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s),
+                                         combined(means[s][q], q)) for s in ends),
+                    grouped(named, " of %d shapes" % sum(len(ss) for _, ss in named))])
+    pairs = [(a, d) for a, q, d in prolate_against_oblate(means) if q == "anisotropy"]
+    if pairs:
+        groups = {}
+        for a, d in pairs:
+            v = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
+            groups.setdefault(v, []).append("a = %g" % a)
+        out.append(["k_xx / k_zz: prolate (a, 1) - oblate (1, a) (flow solve, %s seeds per "
+                    "shape)" % seeds,
+                    "; ".join("a = %g %s" % (a, signed(d["difference"], math.hypot(
+                        d["stat"] or 0.0, d["sys"]), 3)) for a, d in pairs),
+                    grouped(sorted(groups.items(), key=lambda g: g[0] == "undecided"), "")])
+    return out
+
+
 def flow_lines_block(results):
     """results: the study's results folder; the flow solves' lie beside it"""
-    rows = load_rows(os.path.join(os.path.dirname(os.path.normpath(results)), "flow_lines"))
+    rows = flow_rows(results)
     if not rows:
         return "No deposit solved at the defaults yet."
     means = shape_means(rows)

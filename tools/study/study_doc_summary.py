@@ -8,6 +8,7 @@ import math
 from study_doc_claims import brief, pm, shape, signed, table
 from study_doc_depth import depth_share, finite_size_bound, matched
 from study_doc_paper import diff
+from study_doc_flow import summary_rows as flow_rows
 from study_doc_forces import LINE_NAMES, mirror_meaning
 from study_forces import shape_of_trend
 from study_stats import CHANCE_P, SIGMA
@@ -126,7 +127,7 @@ def summary_rows(data):
                      % (bound, SIGMA), "small against %s; not against %s (those hold at N %d "
                      "only)" % (", ".join(small) or "none", ", ".join(large) or "none",
                                 data.n)])
-    return rows
+    return rows + flow_rows(data.results)
 
 
 def summary_block(data):
