@@ -150,7 +150,7 @@ def test_the_summary_rows_of_the_findings(monkeypatch):
     got = {r[0].split(" (flow solve")[0]: r[1:] for r in study_doc_flow.summary_rows("x")}
     cells, verdict = got["k_zz in 1e-4 d^2"]
     assert [c.rsplit(" ", 3)[0] for c in cells.split("; ")] == [
-        "spheres", "(2, 2)", "(3, 1)", "(1, 3)"]    # the diagonal, prolate, oblate ends
+        "the spheres", "(2, 2)", "(3, 1)", "(1, 3)"]    # the diagonal, prolate, oblate ends
     m = shape_means(rows)[(2.0, 2.0)]["k_zz"]
     assert cells.split("; ")[1] == "(2, 2) %.2f +- %.2f" % (
         1e4 * m["mean"], 1e4 * math.hypot(m["stat"], m["sys"]))
@@ -160,6 +160,6 @@ def test_the_summary_rows_of_the_findings(monkeypatch):
     assert verdict == "k_xx > k_zz at (1, 2), (2, 1), (2, 2); undecided in 3 of 6 shapes"
     cells, verdict = got["k_xx / k_zz: prolate (a, 1) - oblate (1, a)"]
     assert cells.startswith("a = 2 -0.41") and cells.split("; ")[1].startswith("a = 3 ")
-    assert verdict == "higher on the oblate line at a = 2; undecided in 1"
+    assert verdict == "higher on the oblate line at a = 2; undecided in 1 of 2 aspect ratios"
     monkeypatch.setattr(study_doc_flow, "flow_rows", lambda results: [])
     assert study_doc_flow.summary_rows("x") == []

@@ -9,8 +9,8 @@ import os
 import numpy as np
 
 from study_doc_claims import pm, signed, table, z_cell
-from study_flow_lines import (QUANTITIES, deposit_row, line_of, prolate_against_oblate,
-                              shape_means, summary, verdicts)
+from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of,
+                              prolate_against_oblate, shape_means, summary, verdicts)
 from study_stats import LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
@@ -42,30 +42,27 @@ def shape_text(s):
     return "spheres" if s == (1.0, 1.0) else "%g, %g" % s
 
 
+def shape_name(s):
+    return "the spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s)
+
+
 def summary_text(decisions):
     """one sentence per quantity: which shapes differ (3 sigma) and which are undecided"""
-    parts = []
-    for q, groups in summary(decisions).items():
-        parts.append("%s: %s." % (NAMES[q], "; ".join(
-            "%s at %s" % (verdict, ", ".join(
-                "the spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s) for s in shapes))
-            for verdict, shapes in groups)))
-    return "Summary (verdicts at 3 sigma, the tables last): " + " ".join(parts)
+    return "Summary (verdicts at 3 sigma, the tables last): " + " ".join(
+        "%s: %s." % (NAMES[q], "; ".join("%s at %s" % (verdict, ", ".join(map(shape_name, ss)))
+                                         for verdict, ss in groups))
+        for q, groups in summary(decisions).items())
 
 
 def pairs_text(pairs):
     """one sentence per quantity: at which aspect ratios the prolate and oblate shapes differ"""
     if not pairs:
         return "Prolate against oblate: no aspect ratio solved on both lines yet."
-    groups = {}
-    for a, q, d in pairs:
-        verdict = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
-        groups.setdefault(q, {}).setdefault(verdict, []).append("%g" % a)
     return "Prolate (a, 1) against oblate (1, a) at equal a: " + " ".join(
         "%s: %s." % (NAMES[q], "; ".join(
-            "%s at a = %s" % (v, ", ".join(a)) for v, a in
-            sorted(groups[q].items(), key=lambda g: g[0] == "undecided")))
-        for q in QUANTITIES if q in groups)
+            "%s at a = %s" % (v, ", ".join("%g" % a for a in ratios))
+            for v, ratios in by_verdict([(a, d) for a, p, d in pairs if p == q])))
+        for q in QUANTITIES if any(p == q for _, p, _ in pairs))
 
 
 def cost_text(rows):
@@ -90,10 +87,11 @@ def combined(m, q):
     return pm(m["mean"] / SCALE[q], err, DIGITS[q])
 
 
-def grouped(groups, of_what):
-    """'verdict at a, b; undecided in n' from [(verdict, [names])]"""
+def counted(groups, what):
+    """'verdict at a, b; undecided in n of N what' from [(verdict, [names])]"""
     return "; ".join("undecided in %d" % len(names) if v == "undecided" else
-                     "%s at %s" % (v, ", ".join(names)) for v, names in groups) + of_what
+                     "%s at %s" % (v, ", ".join(names)) for v, names in groups) + \
+        " of %d %s" % (sum(len(names) for _, names in groups), what)
 
 
 def summary_rows(results):
@@ -113,24 +111,19 @@ def summary_rows(results):
     seeds = "-".join(map(str, sorted({len(means[s]["seeds"]) for s in shapes})))
     out = []
     for q, groups in summary(verdicts(means)).items():
-        named = [(v, ["(%s)" % shape_text(s) for s in ss]) for v, ss in groups]
         out.append(["%s%s (flow solve, %s seeds per shape) against %s; the spheres and each "
                     "line's end" % (NAMES[q], " in 1e-4 d^2" if SCALE[q] != 1.0 else "", seeds,
                                     QUANTITIES[q][1]),
-                    "; ".join("%s %s" % ("spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s),
-                                         combined(means[s][q], q)) for s in ends),
-                    grouped(named, " of %d shapes" % sum(len(ss) for _, ss in named))])
+                    "; ".join("%s %s" % (shape_name(s), combined(means[s][q], q)) for s in ends),
+                    counted([(v, list(map(shape_name, ss))) for v, ss in groups], "shapes")])
     pairs = [(a, d) for a, q, d in prolate_against_oblate(means) if q == "anisotropy"]
     if pairs:
-        groups = {}
-        for a, d in pairs:
-            v = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
-            groups.setdefault(v, []).append("a = %g" % a)
         out.append(["k_xx / k_zz: prolate (a, 1) - oblate (1, a) (flow solve, %s seeds per "
                     "shape)" % seeds,
                     "; ".join("a = %g %s" % (a, signed(d["difference"], math.hypot(
                         d["stat"] or 0.0, d["sys"]), 3)) for a, d in pairs),
-                    grouped(sorted(groups.items(), key=lambda g: g[0] == "undecided"), "")])
+                    counted([(v, ["a = %g" % a for a in ratios])
+                             for v, ratios in by_verdict(pairs)], "aspect ratios")])
     return out
 
 

@@ -147,14 +147,21 @@ def compare(means, q, s, ref, words=None):
 
 def summary(decisions):
     """{q: [(verdict, [shapes])]} in QUANTITIES' order: the shapes grouped by their verdict on
-    q, the decided verdicts first (in the order met), the undecided ones as one group last"""
-    out = {}
+    q (by_verdict)"""
+    per_q = {}
     for s, q, d in sorted(decisions, key=lambda v: v[0]):
-        verdict = "undecided" if d["verdict"].startswith("undecided") else d["verdict"]
-        groups = out.setdefault(q, {})
-        groups.setdefault(verdict, []).append(s)
-    return {q: sorted(out[q].items(), key=lambda g: g[0] == "undecided")
-            for q in QUANTITIES if q in out}
+        per_q.setdefault(q, []).append((s, d))
+    return {q: by_verdict(per_q[q]) for q in QUANTITIES if q in per_q}
+
+
+def by_verdict(decisions):
+    """[(verdict, [keys])] from [(key, decision)]: the decided verdicts first in the order
+    met, the undecided ones as one group last"""
+    groups = {}
+    for key, d in decisions:
+        groups.setdefault("undecided" if d["verdict"].startswith("undecided")
+                          else d["verdict"], []).append(key)
+    return sorted(groups.items(), key=lambda g: g[0] == "undecided")
 
 
 def line_of(shape):
