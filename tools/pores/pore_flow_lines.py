@@ -12,11 +12,11 @@ smallest semi-axis, need (eta zeta^2)^(1/3) times more voxels per d than spheres
 direction) writes OUT/<folder name>.json
 (skipped when it exists: one command per deposit, and reruns only add what is missing; each
 solve is kept in OUT/<folder name>.solves/ as it finishes, so a stopped run resumes); then
-OUT/flow_lines.csv (one row per deposit: eta, zeta, seed, porosity, k_xx, k_zz in d^2 with
-their errors, the anisotropy, the ratio to Kozeny-Carman, the finest voxel's cells, the
-iterations, the seconds summed over the solves: wall and solver CPU) and OUT/flow_lines.png
-(k_xx, k_zz, anisotropy and k_zz / k_KC against the aspect ratio on each line: the seeds and
-their mean with its error, tools/study/study_flow_lines.py).
+OUT/flow_lines.csv (one row per deposit solved in OUT, by this command or an earlier one: eta,
+zeta, seed, porosity, k_xx, k_zz in d^2 with their errors, the anisotropy, the ratio to Kozeny-
+Carman, the finest voxel's cells, the iterations, the seconds summed over the solves: wall and
+solver CPU) and OUT/flow_lines.png (k_xx, k_zz, anisotropy and k_zz / k_KC against the aspect
+ratio on each line: the seeds and their mean with its error, tools/study/study_flow_lines.py).
 """
 import argparse
 import csv
@@ -143,13 +143,13 @@ def main(argv=None):
             print("pore_flow_lines: %s skipped: %s" % (folder, e), file=sys.stderr)
     if not rows:
         sys.exit("pore_flow_lines: no deposit solved")
-    t = table(rows)
+    t = table(study_flow_lines.solved(args.out))
     with open(os.path.join(args.out, "flow_lines.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(t[0]))
         w.writeheader()
         w.writerows(t)
     plot(t, os.path.join(args.out, "flow_lines.png"))
-    for r in t:
+    for r in t:    # every deposit in OUT
         print("eta %-4g zeta %-4g seed %-3g  k_xx %.4g  k_zz %.4g  k_xx/k_zz %.3f  k_zz/k_KC %.3f"
               % (r["eta"], r["zeta"], r["seed"], r["k_xx"], r["k_zz"], r["anisotropy"],
                  r["k_zz_over_kozeny_carman"]))

@@ -1,8 +1,6 @@
 """doc/study.md's permeability along the lines (tools/study/study_doc.py): the flow solve at the
 defaults per shape (seeds' mean, statistical +- extrapolation error) and the verdicts
 (study_flow_lines.py), from results/flow_lines/<run>.json beside the study's results."""
-import glob
-import json
 import math
 import os
 
@@ -10,7 +8,8 @@ import numpy as np
 
 from study_doc_claims import pm, signed, table, z_cell
 from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of,
-                              prolate_against_oblate, shape_means, summary, verdicts)
+                              prolate_against_oblate, shape_means, solved, summary,
+                              verdicts)
 from study_stats import LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
@@ -21,13 +20,8 @@ DIGITS = {"k_zz": 2, "k_xx": 2, "anisotropy": 3, "k_zz_over_kozeny_carman": 3}
 
 
 def load_rows(folder):
-    rows = []
-    for path in sorted(glob.glob(os.path.join(folder, "*.json"))):
-        with open(path) as f:
-            r = json.load(f)
-        if "flow" in r and "extrapolation" in r["flow"]:    # solved at three voxels or more
-            rows.append(deposit_row(r))
-    return rows
+    """the rows of the deposits solved at three voxels or more (extrapolated)"""
+    return [deposit_row(r) for r in solved(folder) if "extrapolation" in r["flow"]]
 
 
 def value_cell(m, q):

@@ -2,6 +2,7 @@
 lines"; the solves: tools/pores/pore_flow_lines.py, one results/flow_lines/<run>.json per
 deposit).
 
+    solved(folder)    -> every deposit's json in pore_flow_lines.py's output folder
     deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC with their errors,
                          and its cost (deposit_cost)
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
@@ -19,7 +20,10 @@ relative half-widths, not reduced by averaging. A verdict needs SIGMA standard e
 two combined, as the normal equivalent of Student's t with the pooled SD's degrees of freedom
 (study_stats.decide); without an error estimate it is undecided.
 """
+import glob
+import json
 import math
+import os
 
 import numpy as np
 
@@ -31,6 +35,17 @@ QUANTITIES = {"k_zz": ("k_zz_bias", "spheres"), "k_xx": ("k_xx_bias", "spheres")
               "k_zz_over_kozeny_carman": ("k_zz_bias", "spheres")}
 EXTRAPOLATED = {"k_xx": "xx", "k_zz": "zz", "anisotropy": "anisotropy_xx_zz"}
 SPHERES = (1.0, 1.0)
+
+
+def solved(folder):
+    """every deposit's json in folder (pore_flow_lines.py's OUT), whichever command solved it"""
+    out = []
+    for path in sorted(glob.glob(os.path.join(folder, "*.json"))):
+        with open(path) as f:
+            r = json.load(f)
+        if "flow" in r:
+            out.append(r)
+    return out
 
 
 def deposit_row(r):
