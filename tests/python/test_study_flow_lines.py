@@ -4,6 +4,7 @@ against isotropy, each computed here independently."""
 import math
 
 import pytest
+from scipy import stats
 
 from study_flow_lines import (deposit_cost, deposit_row, prolate_against_oblate, shape_means,
                               summary, verdicts)
@@ -61,10 +62,20 @@ def test_verdicts_against_the_spheres_and_isotropy():
     stat = math.hypot(1.62e-3 * sd, 1.01e-3 * sd) / math.sqrt(2)
     sys = math.hypot(0.01 * 1.62e-3, 0.01 * 1.01e-3)
     assert high["z"] == pytest.approx(0.61e-3 / math.hypot(stat, sys), rel=1e-12)
-    assert high["dof"] == 3 and high["z_equivalent"] >= 3    # Student's t with 3 dof
+    # Student's t with Welch-Satterthwaite's dof: the pooled SD's 3, the bias none of its own
+    assert high["dof"] == pytest.approx(3 * (1 + (sys / stat) ** 2) ** 2, rel=1e-12)
+    assert high["z_equivalent"] == pytest.approx(
+        stats.norm.isf(stats.t.sf(high["z"], high["dof"])), rel=1e-9)
+    assert high["z_equivalent"] >= 3
     assert high["verdict"] == "higher than the spheres'"
-    # 10 % above the spheres with 1-2 % errors: z about 4.5, not 3 sigma at t with 3 dof
-    assert v[((3.0, 1.0), "k_zz")]["verdict"].startswith("undecided")
+    # 10 % above the spheres with 1-2 % errors: z about 4.7, 3 sigma only because the bias,
+    # half of the error, brings no sampling error (t with the pooled 3 dof alone: 2.6 sigma)
+    prolate = v[((3.0, 1.0), "k_zz")]
+    stat = math.hypot(1.11e-3 * sd, 1.01e-3 * sd) / math.sqrt(2)
+    sys = math.hypot(0.01 * 1.11e-3, 0.01 * 1.01e-3)
+    assert prolate["z"] == pytest.approx(0.10e-3 / math.hypot(stat, sys), rel=1e-12)
+    assert stats.norm.isf(stats.t.sf(prolate["z"], 3)) < 3 <= prolate["z_equivalent"]
+    assert prolate["verdict"] == "higher than the spheres'"
     # one seed 4 % above the spheres, its bias 3 %: z by hand, undecided
     lone = v[((1.0, 3.0), "k_zz")]
     stat = math.hypot(1.05e-3 * sd, 1.01e-3 * sd / math.sqrt(2))
@@ -119,8 +130,8 @@ def test_the_summary_groups_shapes_by_verdict():
     """the verdicts above (worked out by hand there) grouped per quantity, undecided last"""
     got = summary(verdicts(shape_means(ROWS)))
     assert list(got) == ["k_zz", "k_xx", "anisotropy", "k_zz_over_kozeny_carman"]
-    assert got["k_zz"] == [("higher than the spheres'", [(2.0, 2.0)]),
-                           ("undecided", [(1.0, 3.0), (3.0, 1.0)])]
+    assert got["k_zz"] == [("higher than the spheres'", [(2.0, 2.0), (3.0, 1.0)]),
+                           ("undecided", [(1.0, 3.0)])]
     assert got["anisotropy"] == [("k_xx > k_zz", [(2.0, 2.0)]),
                                  ("undecided", [(1.0, 1.0), (1.0, 3.0), (3.0, 1.0)])]
 
@@ -140,23 +151,26 @@ def test_the_cost_sums_every_solve_once():
 
 
 def test_the_summary_rows_of_the_findings(monkeypatch):
-    """study.md's summary of findings: per quantity the spheres and each line's most
-    aspherical shape with the combined error, the shapes counted by verdict (the verdicts
-    above), and the prolate against the oblate anisotropy at equal a"""
+    """study.md's summary of findings: per quantity each line's most aspherical shape (the
+    spheres too against isotropy) with its difference from the reference, the combined error
+    and the verdict's z; the shapes counted by verdict; the prolate against the oblate
+    anisotropy at equal a"""
     import study_doc_flow
     rows = ROWS + [row(2, 1, 1, 1.00e-3, 1.10e-3), row(2, 1, 2, 1.02e-3, 1.122e-3),
                    row(1, 2, 1, 0.80e-3, 1.20e-3), row(1, 2, 2, 0.82e-3, 1.25e-3)]
     monkeypatch.setattr(study_doc_flow, "flow_rows", lambda results: rows)
     got = {r[0].split(" (flow solve")[0]: r[1:] for r in study_doc_flow.summary_rows("x")}
-    cells, verdict = got["k_zz in 1e-4 d^2"]
-    assert [c.rsplit(" ", 3)[0] for c in cells.split("; ")] == [
-        "the spheres", "(2, 2)", "(3, 1)", "(1, 3)"]    # the diagonal, prolate, oblate ends
-    m = shape_means(rows)[(2.0, 2.0)]["k_zz"]
-    assert cells.split("; ")[1] == "(2, 2) %.2f +- %.2f" % (
-        1e4 * m["mean"], 1e4 * math.hypot(m["stat"], m["sys"]))
-    assert verdict.endswith("undecided in 3 of 5 shapes")
-    assert "higher than the spheres' at (2, 2)" in verdict
-    cells, verdict = got["k_xx / k_zz"]
+    cells, verdict = got["k_zz - the spheres' in 1e-4 d^2"]
+    cells = cells.split("; ")
+    assert [c.split(" ")[0] + c.split(" ")[1] for c in cells] == ["(2,2)", "(3,1)", "(1,3)"]
+    m, ref = shape_means(rows)[(2.0, 2.0)]["k_zz"], shape_means(rows)[(1.0, 1.0)]["k_zz"]
+    err = math.hypot(math.hypot(m["stat"], ref["stat"]), math.hypot(m["sys"], ref["sys"]))
+    assert cells[0].startswith("(2, 2) %+.2f +- %.2f (" % (1e4 * (m["mean"] - ref["mean"]),
+                                                          1e4 * err))
+    assert verdict == ("lower than the spheres' at (1, 2); higher than the spheres' at (2, 2), "
+                       "(3, 1); undecided in 2 of 5 shapes")
+    cells, verdict = got["k_xx / k_zz - 1"]
+    assert cells.startswith("the spheres +0.000 +- ")
     assert verdict == "k_xx > k_zz at (1, 2), (2, 1), (2, 2); undecided in 3 of 6 shapes"
     cells, verdict = got["k_xx / k_zz: prolate (a, 1) - oblate (1, a)"]
     assert cells.startswith("a = 2 -0.41") and cells.split("; ")[1].startswith("a = 3 ")

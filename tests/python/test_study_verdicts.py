@@ -91,7 +91,7 @@ def test_seeds_needed_and_the_sign_test():
     k, n, p = study_stats.sign_test([1] * 22 + [-1] * 6)
     assert (k, n) == (22, 28)
     assert p == pytest.approx(stats.binomtest(22, 28).pvalue, rel=1e-9)
-    assert study_stats.decide(2.1, 8, 2, "yes", "no")["verdict"].endswith("needs 8")
+    assert study_stats.decide(2.1, 8, 2, "yes", "no")["verdict"].endswith("needs at least 8")
     assert study_stats.decide(-3.2, None, 2, "yes", "no")["verdict"] == "no"
     # Student's t: 3.03 standard errors from an SD of 10 degrees of freedom are p = 0.013,
     # 2.5 sigma: undecided, and at least one seed more than now
@@ -421,9 +421,9 @@ def test_course_of_a_force_measure():
     assert study_forces.shape_of_trend({
         "slope_per_unit_a/c": {"verdict": "grows with a/c"},
         "thinnest_minus_roundest": {"difference": 0.098, "se": 0.111,
-                                    "verdict": "undecided at 3 seeds; needs 42"}}) == (
+                                    "verdict": "undecided at 3 seeds; needs at least 42"}}) == (
         "slope: grows with a/c, but the thinnest against the roundest: +0.098 +- 0.111, "
-        "undecided at 3 seeds; needs 42")
+        "undecided at 3 seeds; needs at least 42")
 
 
 def test_verdict_per_shape_where_the_shapes_disagree_beyond_chance():

@@ -33,7 +33,7 @@ def z_cell(entry):
         return "-"
     if not entry.get("dof"):
         return z_text(entry["z"])
-    return "%s (t with %d dof: %s)" % (z_text(entry["z"]), entry["dof"],
+    return "%s (t with %.0f dof: %s)" % (z_text(entry["z"]), entry["dof"],
                                        z_text(entry["z_equivalent"]))
 
 

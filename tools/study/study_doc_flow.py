@@ -6,7 +6,7 @@ import os
 
 import numpy as np
 
-from study_doc_claims import pm, signed, table, z_cell
+from study_doc_claims import table, z_cell, z_text
 from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of,
                               prolate_against_oblate, shape_means, solved, summary,
                               verdicts)
@@ -75,10 +75,14 @@ def flow_rows(results):
     return load_rows(os.path.join(os.path.dirname(os.path.normpath(results)), "flow_lines"))
 
 
-def combined(m, q):
-    """mean +- statistical and systematic error combined, in SCALE's units"""
-    err = None if m["stat"] is None else math.hypot(m["stat"], m["sys"] or 0.0) / SCALE[q]
-    return pm(m["mean"] / SCALE[q], err, DIGITS[q])
+def difference_cell(name, q, d):
+    """a shape's (name's) difference from its reference with its combined error, and the z of its
+    verdict (the normal equivalent of Student's t)"""
+    value = "%+.*f" % (DIGITS[q], d["difference"] / SCALE[q])
+    if d["stat"] is not None:
+        value += " +- %.*f" % (DIGITS[q], math.hypot(d["stat"], d["sys"]) / SCALE[q])
+    z = "" if d["z_equivalent"] is None else " (%s)" % z_text(d["z_equivalent"])
+    return "%s %s%s" % (name, value, z)
 
 
 def counted(groups, what):
@@ -89,33 +93,38 @@ def counted(groups, what):
 
 
 def summary_rows(results):
-    """the summary of findings' rows of the flow solve: per quantity the spheres and each line's
-    most aspherical shape solved (mean +- its combined error), the shapes grouped by verdict;
-    k_xx / k_zz of the prolate against the oblate shape at equal aspect ratio"""
+    """the summary of findings' rows of the flow solve: per quantity each line's most aspherical
+    shape solved (the spheres too against isotropy), its difference from the reference with
+    the combined error and z, and the shapes counted by verdict; k_xx / k_zz of the prolate
+    against the oblate shape at equal aspect ratio"""
     rows = flow_rows(results)
     if not rows:
         return []
     means = shape_means(rows)
     shapes = [s for s in means if s != "pooled"]
     aspherical = [s for s in shapes if s != (1.0, 1.0)]
-    ends = [(1.0, 1.0)] if (1.0, 1.0) in means else []
-    ends += list(dict.fromkeys(    # in LINES' order, the diagonal's spheres-only end once
+    ends = list(dict.fromkeys(    # in LINES' order
         max((s for s in aspherical if on_line(line, *s)), key=lambda s: s[0] * s[1])
         for line in LINES if any(on_line(line, *s) for s in aspherical)))
-    seeds = "-".join(map(str, sorted({len(means[s]["seeds"]) for s in shapes})))
+    seeds = "seeds per shape: %s" % "-".join(
+        map(str, sorted({len(means[s]["seeds"]) for s in shapes})))
+    decisions = verdicts(means)
     out = []
-    for q, groups in summary(verdicts(means)).items():
-        out.append(["%s%s (flow solve, %s seeds per shape) against %s; the spheres and each "
-                    "line's end" % (NAMES[q], " in 1e-4 d^2" if SCALE[q] != 1.0 else "", seeds,
-                                    QUANTITIES[q][1]),
-                    "; ".join("%s %s" % (shape_name(s), combined(means[s][q], q)) for s in ends),
+    for q, groups in summary(decisions).items():
+        against = QUANTITIES[q][1]
+        shown = ([(1.0, 1.0)] if against == "isotropy" and (1.0, 1.0) in means else []) + ends
+        found = {s: d for s, p, d in decisions if p == q}
+        out.append(["%s - %s%s (flow solve; %s), at %seach line's most aspherical shape "
+                    "solved" % (NAMES[q], "1" if against == "isotropy" else "the spheres'",
+                                " in 1e-4 d^2" if SCALE[q] != 1.0 else "", seeds,
+                                "the spheres and " if against == "isotropy" else ""),
+                    "; ".join(difference_cell(shape_name(s), q, found[s]) for s in shown if s in found),
                     counted([(v, list(map(shape_name, ss))) for v, ss in groups], "shapes")])
     pairs = [(a, d) for a, q, d in prolate_against_oblate(means) if q == "anisotropy"]
     if pairs:
-        out.append(["k_xx / k_zz: prolate (a, 1) - oblate (1, a) (flow solve, %s seeds per "
-                    "shape)" % seeds,
-                    "; ".join("a = %g %s" % (a, signed(d["difference"], math.hypot(
-                        d["stat"] or 0.0, d["sys"]), 3)) for a, d in pairs),
+        out.append(["k_xx / k_zz: prolate (a, 1) - oblate (1, a) (flow solve; %s)" % seeds,
+                    "; ".join(difference_cell("a = %g" % a, "anisotropy", d)
+                              for a, d in pairs),
                     counted([(v, ["a = %g" % a for a in ratios])
                              for v, ratios in by_verdict(pairs)], "aspect ratios")])
     return out

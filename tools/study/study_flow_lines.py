@@ -27,7 +27,8 @@ import os
 
 import numpy as np
 
-from study_stats import LINES, decide, on_line, pooled_groups, seeds_needed, significance
+from study_stats import (LINES, decide, effective_dof, on_line, pooled_groups, seeds_needed,
+                         significance)
 
 # quantity: (the deposit's bias of it, what the verdict compares it with)
 QUANTITIES = {"k_zz": ("k_zz_bias", "spheres"), "k_xx": ("k_xx_bias", "spheres"),
@@ -155,7 +156,7 @@ def compare(means, q, s, ref, words=None):
     sys = math.sqrt(sum(b ** 2 for b in biases)) if known else 0.0
     seeds = "-".join(sorted({"%d" % len(means[t]["seeds"]) for t in compared}))
     d = decide(significance(diff, stat, sys), seeds_needed(diff, parts, sys), seeds, *words,
-               dof)
+               effective_dof(stat, dof, sys))
     d.update(difference=diff, stat=stat, sys=sys)
     return d
 

@@ -208,9 +208,10 @@ def line_fit(x, y, se):
 
 
 def seeds_needed(difference, parts, sys=0.0, sigma=SIGMA):
-    """seeds per point for `difference` to be `sigma` standard errors, the statistical
-    error shrinking as 1/sqrt(seeds): parts [(standard error now, seeds now), ...], one per
-    independent term. None when there is no difference, or when the fixed systematic alone
+    """seeds per point for `difference` to be `sigma` standard errors of the normal, the
+    statistical error shrinking as 1/sqrt(seeds): a lower bound, as Student's t at the degrees
+    of freedom of those seeds needs as many or more. parts [(standard error now, seeds now),
+    ...], one per independent term. None when there is no difference, or when the fixed systematic alone
     is a third of the difference or more (no number of seeds decides it)."""
     if any(se is None for se, _ in parts):
         return None
@@ -227,6 +228,17 @@ def equivalent_sigma(z, dof):
         return z
     p = 2 * stats.t.sf(abs(z), dof)
     return math.copysign(float(stats.norm.isf(p / 2)), z)
+
+
+def effective_dof(stat, dof, sys):
+    """Welch-Satterthwaite's degrees of freedom of sqrt(stat^2 + sys^2) where stat has dof and
+    the systematic sys, not estimated from the seeds, has infinitely many:
+    dof (1 + sys^2 / stat^2)^2; the normal (None) without a statistical part"""
+    if not dof:
+        return dof
+    if not stat:
+        return None
+    return dof * (1.0 + (sys or 0.0) ** 2 / stat ** 2) ** 2
 
 
 def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA):
@@ -248,7 +260,7 @@ def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA):
         out["seeds_needed"] = needed
         out["verdict"] = ("undecided at %s seeds; needs more than %d (the difference measured "
                           "is near 0)" % (seeds, LARGE) if needed > LARGE else
-                          "undecided at %s seeds; needs %d" % (seeds, needed))
+                          "undecided at %s seeds; needs at least %d" % (seeds, needed))
     return out
 
 
