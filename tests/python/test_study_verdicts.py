@@ -82,6 +82,16 @@ def test_line_maximum_and_its_fit_window_systematic():
     assert study_stats.line_maximum(x, -x, None, rng)["at_edge"]
 
 
+def test_effective_dof_of_a_statistical_and_a_systematic_error():
+    """Welch-Satterthwaite with a systematic of infinite dof: (s^2 + y^2)^2 / (s^4 / dof)"""
+    assert study_stats.effective_dof(0.002, 3, 0.0) == 3
+    assert study_stats.effective_dof(0.002, 3, 0.002) == pytest.approx(12.0, rel=1e-12)
+    assert study_stats.effective_dof(0.002, 3, 0.001) == pytest.approx(
+        (0.002 ** 2 + 0.001 ** 2) ** 2 / (0.002 ** 4 / 3), rel=1e-12)
+    assert study_stats.effective_dof(0.0, 3, 0.001) is None    # no statistical part: normal
+    assert study_stats.effective_dof(0.002, None, 0.001) is None
+
+
 def test_seeds_needed_and_the_sign_test():
     # 0.003 against two errors 0.001 at 2 seeds: 2.1 sigma; 3 sigma when the variance
     # (2 + 2) 1e-6 / seeds is (0.003 / 3)^2: 4 seeds
