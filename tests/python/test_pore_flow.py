@@ -14,6 +14,7 @@ OpenFOAM must be installed (`./ellipsoid-dep pores DIR --flow` installs Debian's
 without it every test here fails with that message.
 """
 import json
+import math
 import os
 
 import numpy as np
@@ -148,6 +149,12 @@ def test_tool_flow_on_the_cubic_lattice(tmp_path):
     assert k["yy"] == pytest.approx(k["xx"], rel=1e-6)
     assert r["cells"]["zz"] == 2 * r["cells"]["xx"] == 2 * 16 * cell["cells"]["xx"]
     assert r["filled_pore_fraction"] == 0.0
+    # k / k_KC of the flow domain itself, here the slab: porosity 1 - pi/6, S_v = pi / d
+    porosity = 1 - math.pi / 6
+    assert k["medium"]["porosity"] == pytest.approx(porosity, rel=1e-12)
+    assert k["medium"]["specific_surface"] == pytest.approx(math.pi, rel=1e-12)
+    assert k["ratio_to_kozeny_carman"]["zz"] == pytest.approx(
+        k["zz"] * 5 * math.pi ** 2 / porosity ** 3, rel=1e-12)
     for key, res in r["residuals"].items():
         assert res["U" + key[0]] <= pore_flow.TOLERANCE
 

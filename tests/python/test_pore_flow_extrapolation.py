@@ -222,6 +222,19 @@ def test_cut_box_of_a_lattice_is_the_periodic_lattice():
     inner = pore_flow_domain.flow_domain(box, 2.0, 6.0, d, 2.5, at=(1.5, 1.5))
     same, _, _ = pore_flow_domain.flow_image(p, box, inner, h, lambda m: None)
     assert np.array_equal(solid, same) and filled == 0.0
+    # the domain's own medium: 8 whole spheres of radius 0.4 in the 2 x 2 x 2 box, and the
+    # same (2 x 2 periods) from the parts of spheres and images that a box across the edge
+    # cuts, its faces 0.05 from their centres
+    porosity = 1 - 8 * 4 / 3 * math.pi * 0.4 ** 3 / 8
+    s_v = 8 * 4 * math.pi * 0.4 ** 2 / 8
+    kc = porosity ** 3 / (5 * s_v ** 2) / d ** 2
+    across = pore_flow_domain.flow_domain(box, 2.0, 6.0, d, 2.5, at=(0.55, 0.45))
+    for medium in (k["medium"], pore_flow_domain.domain_medium(p, box, across, d)):
+        assert medium["porosity"] == pytest.approx(porosity, rel=1e-4)
+        assert medium["specific_surface"] == pytest.approx(s_v, rel=1e-4)
+        assert medium["kozeny_carman"] == pytest.approx(kc, rel=3e-4)
+    assert k["ratio_to_kozeny_carman"]["zz"] == pytest.approx(k["zz"] / k["medium"][
+        "kozeny_carman"], rel=1e-12)
 
 
 def touching_lattice(shift):

@@ -170,6 +170,48 @@ def test_tilted_cut_adds_up():
     assert min(zones) > 0
 
 
+def test_box_part_against_closed_forms():
+    """the volume and area of ellipsoids inside an axis-aligned box: a sphere at the box's
+    corner (an eighth of each), on an edge (a quarter), tilted triaxial ellipsoids on a face
+    (half of each, by central symmetry), wholly inside and wholly outside (exact)"""
+    semi = np.array([[0.5, 0.5, 0.5], [0.5, 0.5, 0.5], [0.9, 0.5, 0.25], [0.7, 0.4, 0.3],
+                     [0.9, 0.5, 0.25], [0.9, 0.5, 0.25]])
+    centres = np.array([[0, 0, 0], [0, 2, 0], [1, 1, 3], [1.7, 4, 2.2], [2, 2, 2],
+                        [9, 2, 2]], float)
+    rng = np.random.default_rng(8)
+    p = pores.Particles(centres, geometry.random_quats(rng, len(centres)), semi)
+    box = ((0.0, 4.0), (0.0, 4.0), (0.0, 3.0))
+    fractions, areas, change = pore_surface.box_part(p, box, rtol=1e-4)
+    assert change <= 1e-4
+    whole = pore_surface.ellipsoid_area(semi)
+    share = np.array([1 / 8, 1 / 4, 1 / 2, 1 / 2])
+    # the tolerance the quadrature is stopped at holds for the cut particles' totals
+    assert fractions[:4] @ p.volumes[:4] == pytest.approx(share @ p.volumes[:4], rel=2e-4)
+    assert areas[:4].sum() == pytest.approx(share @ whole[:4], rel=2e-4)
+    np.testing.assert_allclose(fractions[:4], share, rtol=2e-3)    # and each within 0.2 %
+    np.testing.assert_allclose(areas[:4], share * whole[:4], rtol=2e-3)
+    assert fractions[4] == 1.0 and areas[4] == whole[4]
+    assert fractions[5] == 0.0 and areas[5] == 0.0
+
+
+def test_box_part_is_the_slab_where_the_box_is_wide():
+    """tilted ellipsoids cut by the box's floor and ceiling only: the closed-form slab
+    fraction and the converged zone areas"""
+    rng = np.random.default_rng(9)
+    n = 6
+    semi = np.tile([0.9, 0.5, 0.25], (n, 1))
+    centres = np.column_stack([rng.uniform(3, 7, n), rng.uniform(3, 7, n),
+                               rng.uniform(0.6, 1.4, n)])
+    p = pores.Particles(centres, geometry.random_quats(rng, n), semi)
+    fractions, areas, _ = pore_surface.box_part(p, ((0.0, 10.0), (0.0, 10.0), (0.9, 1.3)))
+    h = p.half_extent[:, 2]
+    t1 = np.clip((0.9 - centres[:, 2]) / h, -1, 1)
+    t2 = np.clip((1.3 - centres[:, 2]) / h, -1, 1)
+    zones, _ = pore_surface.converged_zone_area(semi, p.rotations, t1, t2)
+    np.testing.assert_allclose(fractions, pore_surface.slab_fraction(p, 0.9, 1.3), rtol=1e-4)
+    np.testing.assert_allclose(areas, zones, rtol=2e-3)
+
+
 # ---------------------------------------------------------------------------------------------
 # voxel algorithms
 

@@ -17,6 +17,7 @@ import numpy as np
 
 import pore_flow
 from pore_flow_fit import extrapolate
+from pore_surface import box_part, kozeny_carman
 from pore_voxels import Grid, check_memory, periodic_labels, voxelize
 
 # the default voxels, fractions of the smallest semi-axis: d/13, d/16, d/20 for spheres (a
@@ -56,6 +57,11 @@ class Domain:
         (x0, x1), (y0, y1), z = self.ranges
         return Domain((x0 + dx, x1 + dx), (y0 + dy, y1 + dy), z, self.periodic[:2])
 
+    @classmethod
+    def described(cls, desc):
+        """the domain of describe()'s dict (a solve's json)"""
+        return cls(desc["x"], desc["y"], desc["z"], desc["periodic"][:2])
+
     def describe(self, d):
         sides = [r[1] - r[0] for r in self.ranges]
         return {"kind": "slab" if all(self.periodic[:2]) else "box",
@@ -81,6 +87,20 @@ def flow_domain(box, zlo, zhi, d, side=FLOW_BOX, at=None):
         mid = 0.5 * (zlo + zhi)
         z = (mid - 0.5 * length, mid + 0.5 * length)
     return Domain(ranges[0], ranges[1], z, periodic)
+
+
+def domain_medium(particles, box, domain, d):
+    """the flow domain's own porous medium: its porosity, specific surface (per length) and
+    Kozeny-Carman k in d^2, from the exact parts of the particles (and their periodic images)
+    inside it (pore_surface.box_part), so that k / k_KC compares one volume with itself"""
+    inside = images_in(particles, box, domain)
+    fractions, areas, change = box_part(inside, domain.ranges)
+    volume = float(np.prod([r[1] - r[0] for r in domain.ranges]))
+    porosity = 1.0 - float(fractions @ inside.volumes) / volume
+    s_v = float(areas.sum()) / volume
+    return {"porosity": porosity, "specific_surface": s_v,
+            "kozeny_carman": kozeny_carman(porosity, s_v) / d ** 2,
+            "quadrature_relative_change": change}
 
 
 def images_in(particles, box, domain):
@@ -259,7 +279,8 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
     resolutions = [resolution(particles, box, domain, voxel, d, offsets, directions, progress,
                               workdir, solved) for voxel in voxels]
     out = {"units": "d^2", "d": d, "domain": domain.describe(d), "resolutions": resolutions,
-           "tolerance": pore_flow.TOLERANCE}
+           "tolerance": pore_flow.TOLERANCE,
+           "medium": domain_medium(particles, box, domain, d)}
     if len(resolutions) >= 3:
         out["extrapolation"] = {}
         for key in directions:
@@ -275,6 +296,8 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
     else:
         out.update({key: resolutions[-1][key] for key in directions})
         out["anisotropy_xx_zz"] = resolutions[-1]["anisotropy_xx_zz"]
+    out["ratio_to_kozeny_carman"] = {key: out[key] / out["medium"]["kozeny_carman"]
+                                     for key in directions}
     return out
 
 

@@ -36,25 +36,31 @@ import study_stats  # noqa: E402
 
 def solve_folder(folder, out, voxels_per_d, directions, side):
     path = os.path.join(out, os.path.basename(os.path.normpath(folder)) + ".json")
+    row = None
     if os.path.exists(path):
         with open(path) as f:
-            return json.load(f)
-    progress = pores.Progress()
+            row = json.load(f)
+        if "medium" in row["flow"]:
+            return row
     particles, box = pores.read_dump(os.path.join(folder, "deposit.dump"))
-    pk = pores.read_slab(folder)
-    zlo, zhi = pk["zlo"], pk["zhi"]
     d = pore_flow_domain.volume_diameter(particles)
-    k = pore_flow_domain.flow_permeability(
-        particles, box, zlo, zhi, voxels_per_d and [d / n for n in voxels_per_d], progress,
-        directions=directions, side=side, solved=path[:-len(".json")] + ".solves")
-    v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
-    solid = (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum()
-    porosity = 1.0 - solid / v_slab
-    s_v = pore_surface.slab_surface(particles, zlo, zhi)[0] / v_slab
-    row = {"folder": folder, "eta": pk.get("eta"), "zeta": pk.get("zeta"),
-           "seed": pk.get("seed"), "porosity": porosity, "specific_surface": s_v,
-           "k_kozeny_carman": porosity ** 3 / (pores.KOZENY_CONSTANT * s_v ** 2) / d ** 2,
-           "flow": k}
+    if row is not None:    # solved before the domain's own medium was part of the solve
+        domain = pore_flow_domain.Domain.described(row["flow"]["domain"])
+        row["flow"]["medium"] = pore_flow_domain.domain_medium(particles, box, domain, d)
+        row.pop("k_kozeny_carman", None)    # the slab's, not the domain's
+    else:
+        pk = pores.read_slab(folder)
+        zlo, zhi = pk["zlo"], pk["zhi"]
+        k = pore_flow_domain.flow_permeability(
+            particles, box, zlo, zhi, voxels_per_d and [d / n for n in voxels_per_d],
+            pores.Progress(), directions=directions, side=side,
+            solved=path[:-len(".json")] + ".solves")
+        v_slab = (box[0, 1] - box[0, 0]) * (box[1, 1] - box[1, 0]) * (zhi - zlo)
+        solid = (pore_surface.slab_fraction(particles, zlo, zhi) * particles.volumes).sum()
+        row = {"folder": folder, "eta": pk.get("eta"), "zeta": pk.get("zeta"),
+               "seed": pk.get("seed"), "porosity": 1.0 - solid / v_slab,
+               "specific_surface": pore_surface.slab_surface(particles, zlo, zhi)[0] / v_slab,
+               "flow": k}
     with open(path, "w") as f:
         json.dump(row, f, indent=1)
     return row

@@ -49,7 +49,8 @@ from deposit_run import read_packing  # noqa: E402
 # Particles and rotation_matrices: pores' names for its callers too
 from pore_input import Particles, read_dump, read_slab, rotation_matrices  # noqa: E402,F401
 from pore_picture import plot  # noqa: E402
-from pore_surface import slab_fraction, slab_surface  # noqa: E402
+from pore_surface import (KOZENY_CONSTANT, kozeny_carman, slab_fraction,  # noqa: E402
+                          slab_surface)
 from pore_flow_domain import (FLOW_BOX, FLOW_OFFSET_COUNT, FLOW_VOXEL_FRACTIONS,  # noqa: E402
                               flow_permeability)
 from pore_voxels import analyse_voxels  # noqa: E402
@@ -57,7 +58,6 @@ from study_stats import Pooled  # noqa: E402
 
 VOXEL_FRACTION = 0.125    # default voxel size: this fraction of the smallest semi-axis
 MAX_VOXEL_FRACTION = 0.5  # larger voxels cannot resolve the thinnest particle dimension
-KOZENY_CONSTANT = 5.0     # k = eps^3 / (K S_v^2), Carman's K = 5 (180 for spheres in d^2)
 
 
 class Progress:
@@ -117,8 +117,7 @@ def analyse(particles, box, zlo, zhi, voxel=None, progress=None, voxel_fraction=
         "surface_area": surface,
         "surface_cut_particles": ncut,
         "surface_quadrature_relative_change": quad_change,
-        "kozeny_carman_permeability": porosity ** 3 / (KOZENY_CONSTANT * s_v ** 2)
-        if s_v > 0 else math.inf,
+        "kozeny_carman_permeability": kozeny_carman(porosity, s_v),
         "kozeny_carman": {"formula": "k = porosity^3 / (K S_v^2), S_v = specific_surface",
                           "K": KOZENY_CONSTANT},
         "hydraulic_radius": porosity / s_v if s_v > 0 else math.inf,
@@ -187,8 +186,6 @@ def run_folder(run_dir, voxel=None, quiet=False, picture=True, flow=False, flow_
                                     "difference": result["porosity"] - (1.0 - pk["phi"])}
     result["voxel_image"] = write_voxel_image(result, run_dir)
     if k is not None:
-        kc = result["kozeny_carman_permeability"] / k["d"] ** 2
-        k["ratio_to_kozeny_carman"] = {a: k[a] / kc for a in ("xx", "yy", "zz")}
         result["permeability_flow"] = k
     for key in ("eta", "zeta", "delta_r", "N", "seed", "at_rest"):    # at_rest 0: said
         if key in pk:

@@ -145,13 +145,13 @@ def flow_lines_block(results):
             "relative SD, pooled per group of shapes: %s. Each cell: mean +- statistical error "
             "+- extrapolation bias (n/a: no seed scatter to pool yet)."
             % (len(rows), PLANNED, PLANNED // 2, pooled))
-    values = table(["eta, zeta", "line", "seeds", "porosity"]
+    values = table(["eta, zeta", "line", "seeds", "porosity (slab)", "porosity (box)"]
                    + ["%s%s" % (NAMES[q], " (1e-4 d^2)" if SCALE[q] != 1.0 else "")
                       for q in QUANTITIES],
                    [[shape_text(s), ", ".join(line_of(s)) if s != (1.0, 1.0) else "all",
-                     ",".join("%d" % n for n in means[s]["seeds"]),
-                     "%.4f" % np.mean([r["porosity"] for r in rows
-                                       if (r["eta"], r["zeta"]) == s])]
+                     ",".join("%d" % n for n in means[s]["seeds"])]
+                    + ["%.4f" % np.mean([r[key] for r in rows if (r["eta"], r["zeta"]) == s])
+                       for key in ("porosity", "domain_porosity")]
                     + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
     decisions = verdicts(means)
     head += " " + cost_text(rows)
