@@ -10,7 +10,7 @@ from study_doc_claims import table, z_cell, z_text
 from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of,
                               prolate_against_oblate, shape_means, solved, summary,
                               verdicts)
-from study_stats import LINES, on_line
+from study_stats import CHANCE_P, LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
 NAMES = {"k_zz": "k_zz", "k_xx": "k_xx", "anisotropy": "k_xx / k_zz",
@@ -154,13 +154,16 @@ def flow_lines_block(results):
                        for key in ("porosity", "domain_porosity")]
                     + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
     decisions = verdicts(means)
-    head += " " + cost_text(rows)
+    pairs = prolate_against_oblate(means)
+    tests = len(decisions) + len(pairs)
+    head += (" %d comparisons (the tables below): were there no effect at all, %.2f of them "
+             "would be decided at 3 sigma by chance (p %g each). " % (
+                 tests, tests * CHANCE_P, CHANCE_P) + cost_text(rows))
     decided = table(["eta, zeta", "quantity", "against", "difference", "z", "verdict"],
                     [[shape_text(s), NAMES[q], QUANTITIES[q][1],
                       ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
                       z_cell(d), d["verdict"]]
                      for s, q, d in sorted(decisions, key=lambda v: (v[1], v[0]))])
-    pairs = prolate_against_oblate(means)
     blocks = [summary_text(decisions), pairs_text(pairs), head, values, decided]
     if pairs:
         blocks.append(table(["a", "quantity", "prolate (a, 1) - oblate (1, a)", "z", "verdict"],
