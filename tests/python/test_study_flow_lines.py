@@ -6,8 +6,8 @@ import math
 import pytest
 from scipy import stats
 
-from study_flow_lines import (deposit_cost, deposit_row, prolate_against_oblate, shape_means,
-                              summary, verdicts)
+from study_flow_lines import (deposit_cost, deposit_row, line_trends, prolate_against_oblate,
+                              shape_means, summary, verdicts)
 
 
 def bracket(k, err):
@@ -177,3 +177,33 @@ def test_the_summary_rows_of_the_findings(monkeypatch):
     assert verdict == "higher on the oblate line at a = 2; undecided in 1 of 2 aspect ratios"
     monkeypatch.setattr(study_doc_flow, "flow_rows", lambda results: [])
     assert study_doc_flow.summary_rows("x") == []
+
+
+def test_the_trend_along_a_line():
+    """k_zz exactly linear in a/c on the prolate line (1.0, 1.2, 1.4e-3 at a/c 1, 2, 3, the
+    seeds 1 % either side): the slope 0.2e-3, its statistical and systematic parts propagated
+    apart by hand, Welch-Satterthwaite's dof, "grows with a/c"; a line of two shapes has none"""
+    rows = [row(e, 1, seed, k * f, k * f) for e, k in ((1, 1.0e-3), (2, 1.2e-3), (3, 1.4e-3))
+            for seed, f in ((1, 0.99), (2, 1.01))]
+    means = shape_means(rows)
+    t = {(line, q): d for line, q, d in line_trends(means)}
+    assert {line for line, _ in t} == {"prolate"}
+    d = t[("prolate", "k_zz")]
+    (sd, dof), = means["pooled"]["k_zz"].values()    # one group: the spheroids
+    assert sd == pytest.approx(0.01 * math.sqrt(2), rel=1e-9) and dof == 3
+    k = [1.0e-3, 1.2e-3, 1.4e-3]
+    stat = [v * sd / math.sqrt(2) for v in k]
+    sys = [0.01 * v for v in k]
+    w = [1 / (a * a + b * b) for a, b in zip(stat, sys)]
+    xm = sum(wi * x for wi, x in zip(w, (1, 2, 3))) / sum(w)
+    sxx = sum(wi * (x - xm) ** 2 for wi, x in zip(w, (1, 2, 3)))
+    c = [wi * (x - xm) / sxx for wi, x in zip(w, (1, 2, 3))]
+    stat_slope = math.sqrt(sum((ci * a) ** 2 for ci, a in zip(c, stat)))
+    sys_slope = math.sqrt(sum((ci * b) ** 2 for ci, b in zip(c, sys)))
+    assert d["slope"] == pytest.approx(0.2e-3, rel=1e-9)
+    assert d["se"] == pytest.approx(math.sqrt(1 / sxx), rel=1e-9)
+    assert (d["stat"], d["sys"]) == (pytest.approx(stat_slope, rel=1e-9),
+                                     pytest.approx(sys_slope, rel=1e-9))
+    assert d["dof"] == pytest.approx(3 * (1 + (sys_slope / stat_slope) ** 2) ** 2, rel=1e-9)
+    assert not d["lack_of_fit"] and d["verdict"] == "grows with a/c"
+    assert line_trends(shape_means(rows[:4])) == []

@@ -6,8 +6,8 @@ import os
 
 import numpy as np
 
-from study_doc_claims import table, z_cell, z_text
-from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of,
+from study_doc_claims import fit_cell, pm, table, z_cell, z_text
+from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of, line_trends,
                               prolate_against_oblate, shape_means, solved, summary,
                               verdicts)
 from study_stats import CHANCE_P, LINES, on_line
@@ -59,11 +59,24 @@ def pairs_text(pairs):
         for q in QUANTITIES if any(p == q for _, p, _ in pairs))
 
 
+def trends_text(trends):
+    """one sentence per quantity: the lines along which it grows or falls with a/c"""
+    if not trends:
+        return "Along the lines: no line has three shapes solved yet."
+    return "Along the lines (the weighted slope against a/c): " + " ".join(
+        "%s: %s." % (NAMES[q], "; ".join(
+            "%s on %s" % (v, ", ".join(lines))
+            for v, lines in by_verdict([(line, d) for line, p, d in trends if p == q])))
+        for q in QUANTITIES if any(p == q for _, p, _ in trends))
+
+
 def cost_text(rows):
     """the deposits' cost: median and range of their solves' summed wall and CPU minutes"""
     def minutes(key):
         m = np.array([r[key] for r in rows if r[key] != ""]) / 60.0
         return "%.0f min (%.0f to %.0f)" % (np.median(m), m.min(), m.max())
+    if all(r["solve_seconds"] == "" for r in rows):
+        return "No solve's cost recorded."
     return ("Cost per deposit, summed over its solves (median, range): the solver's CPU %s; "
             "wall time %s, with the meshing and the waits of a machine shared with other runs."
             % (minutes("solver_cpu_seconds"), minutes("solve_seconds")))
@@ -155,7 +168,8 @@ def flow_lines_block(results):
                     + [value_cell(means[s][q], q) for q in QUANTITIES] for s in shapes])
     decisions = verdicts(means)
     pairs = prolate_against_oblate(means)
-    tests = len(decisions) + len(pairs)
+    trends = line_trends(means)
+    tests = len(decisions) + len(pairs) + len(trends)
     head += (" %d comparisons (the tables below): were there no effect at all, %.2f of them "
              "would be decided at 3 sigma by chance (p %g each). " % (
                  tests, tests * CHANCE_P, CHANCE_P) + cost_text(rows))
@@ -164,12 +178,22 @@ def flow_lines_block(results):
                       ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
                       z_cell(d), d["verdict"]]
                      for s, q, d in sorted(decisions, key=lambda v: (v[1], v[0]))])
-    blocks = [summary_text(decisions), pairs_text(pairs), head, values, decided]
+    blocks = [summary_text(decisions), pairs_text(pairs), trends_text(trends), head, values,
+              decided]
     if pairs:
         blocks.append(table(["a", "quantity", "prolate (a, 1) - oblate (1, a)", "z", "verdict"],
                             [["%g" % a, NAMES[q],
                               ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],
                               z_cell(d), d["verdict"]]
                              for a, q, d in sorted(pairs, key=lambda v: (v[1], v[0]))]))
+    if trends:
+        blocks.append(table(["line", "quantity", "slope per unit a/c (a/c range)", "z",
+                             "verdict"],
+                            [[line, NAMES[q] + (" (1e-4 d^2)" if SCALE[q] != 1.0 else ""),
+                              "%s (%g-%g)" % (
+                                pm(d["slope"] / SCALE[q], d["se"] / SCALE[q], DIGITS[q] + 1),
+                                d["shapes"][0][0] * d["shapes"][0][1],
+                                d["shapes"][-1][0] * d["shapes"][-1][1]), fit_cell(d),
+                              d["verdict"]] for line, q, d in trends]))
     return "\n\n".join(blocks)
 

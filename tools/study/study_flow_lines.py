@@ -8,6 +8,7 @@ deposit).
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
     prolate_against_oblate(means) -> at equal aspect ratio, the prolate shape less the oblate
+    line_trends(means) -> the slope of each quantity against a/c along each line
     summary(verdicts) -> per quantity the shapes of each verdict, undecided ones last
 
 Errors. A deposit's k carries the error of the extrapolation to a vanishing voxel
@@ -27,8 +28,8 @@ import os
 
 import numpy as np
 
-from study_stats import (LINES, decide, effective_dof, on_line, pooled_groups, seeds_needed,
-                         significance)
+from study_stats import (LINES, decide, effective_dof, line_fit, on_line, pooled_groups,
+                         seeds_needed, significance)
 
 # quantity: (the deposit's bias of it, what the verdict compares it with)
 QUANTITIES = {"k_zz": ("k_zz_bias", "spheres"), "k_xx": ("k_xx_bias", "spheres"),
@@ -134,6 +135,43 @@ def prolate_against_oblate(means):
     return [(a, q, compare(means, q, (a, 1.0), (1.0, a), ("higher on the prolate line",
                                                            "higher on the oblate line")))
             for q in QUANTITIES for a in ratios]
+
+
+def line_trends(means):
+    """[(line, q, trend)]: the weighted straight line of q against a/c = eta zeta over the
+    line's shapes (the spheres included; 3 or more with errors), its slope with the
+    statistical and systematic parts propagated apart, and the verdict (study_stats.line_fit:
+    beyond-chance scatter about the line scales the error by the Birge ratio)"""
+    out = []
+    for line in LINES:
+        shapes = sorted((s for s in means if s != "pooled" and on_line(line, *s)),
+                        key=lambda s: s[0] * s[1])
+        for q in QUANTITIES:
+            if len(shapes) < 3 or any(means[s][q]["stat"] is None or means[s][q]["sys"] is None
+                                      for s in shapes):
+                continue
+            m = [means[s][q] for s in shapes]
+            x = np.array([s[0] * s[1] for s in shapes])
+            se = np.array([math.hypot(p["stat"], p["sys"]) for p in m])
+            fit = line_fit(x, [p["mean"] for p in m], se)
+            w = se ** -2    # the slope is sum c_i y_i
+            xm = np.sum(w * x) / w.sum()
+            c = w * (x - xm) / np.sum(w * (x - xm) ** 2)
+            stat = float(np.sqrt(np.sum((c * [p["stat"] for p in m]) ** 2)))
+            sys = float(np.sqrt(np.sum((c * [p["sys"] for p in m]) ** 2)))
+            birge = fit["se"] / fit["se_fit"]
+            dof = effective_dof(stat, min(p["dof"] for p in m), sys)
+            if fit["lack_of_fit"]:
+                dof = min(dof or math.inf, fit["dof_lack_of_fit"])
+            fewest = min(len(means[s]["seeds"]) for s in shapes)
+            seeds = "-".join(sorted({"%d" % len(means[s]["seeds"]) for s in shapes}))
+            need = (None if fit["lack_of_fit"] else
+                    seeds_needed(fit["slope"], [(stat, fewest)], sys))
+            out.append((line, q, dict(fit, stat=stat * birge, sys=sys * birge,
+                                      shapes=[list(s) for s in shapes],
+                                      **decide(fit["slope"] / fit["se"], need, seeds,
+                                               "grows with a/c", "falls with a/c", dof))))
+    return out
 
 
 def compare(means, q, s, ref, words=None):
