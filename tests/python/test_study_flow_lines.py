@@ -207,3 +207,22 @@ def test_the_trend_along_a_line():
     assert d["dof"] == pytest.approx(3 * (1 + (sys_slope / stat_slope) ** 2) ** 2, rel=1e-9)
     assert not d["lack_of_fit"] and d["verdict"] == "grows with a/c"
     assert line_trends(shape_means(rows[:4])) == []
+
+
+def test_the_block_of_study_md(monkeypatch):
+    """the whole generated block on hand-made rows: its sentences in order, the comparisons
+    counted with what chance would decide, the four tables, and no cost without solves"""
+    import study_doc_flow
+    from study_stats import CHANCE_P
+    rows = ROWS + [row(2, 1, 1, 1.00e-3, 1.10e-3), row(2, 1, 2, 1.02e-3, 1.122e-3),
+                   row(1, 2, 1, 0.80e-3, 1.20e-3), row(1, 2, 2, 0.82e-3, 1.25e-3)]
+    monkeypatch.setattr(study_doc_flow, "flow_rows", lambda results: rows)
+    parts = study_doc_flow.flow_lines_block("x").split("\n\n")
+    assert [p.split(" ")[0] for p in parts[:4]] == ["Summary", "Prolate", "Along", "Deposits"]
+    means = shape_means(rows)
+    tests = (len(verdicts(means)) + len(prolate_against_oblate(means))
+             + len(line_trends(means)))
+    assert "Deposits solved: 11 of the 20 planned" in parts[3]
+    assert "%d comparisons" % tests in parts[3] and "%.2f of them" % (tests * CHANCE_P) in parts[3]
+    assert parts[3].endswith("No solve's cost recorded.")
+    assert len(parts) == 8 and all(p.startswith("| ") for p in parts[4:])
