@@ -7,7 +7,7 @@ import pytest
 from scipy import stats
 
 from study_flow_lines import (deposit_cost, deposit_row, line_trends, prolate_against_oblate,
-                              shape_means, summary, verdicts)
+                              scatter_check, shape_means, summary, verdicts)
 
 
 def bracket(k, err):
@@ -224,5 +224,23 @@ def test_the_block_of_study_md(monkeypatch):
              + len(line_trends(means)))
     assert "Deposits solved: 11 of the 20 planned" in parts[3]
     assert "%d comparisons" % tests in parts[3] and "%.2f of them" % (tests * CHANCE_P) in parts[3]
-    assert parts[3].endswith("No solve's cost recorded.")
+    assert "No solve's cost recorded." in parts[3]
+    assert "Bartlett's test that the shapes scatter alike" in parts[3]
     assert len(parts) == 8 and all(p.startswith("| ") for p in parts[4:])
+
+
+def test_the_shapes_scatter_alike_bartlett_by_hand():
+    """each shape's own relative seed SD and Bartlett's statistic written out: k = 3 shapes of
+    two seeds (the lone seed has no SD), variances of the values over their shape's mean"""
+    c = scatter_check(ROWS)["k_zz"]
+    own = {(1.0, 1.0): (1.00, 1.02), (2.0, 2.0): (1.60, 1.64), (3.0, 1.0): (1.10, 1.12)}
+    var = {s: 2 * ((a - b) / (a + b)) ** 2 for s, (a, b) in own.items()}    # (n - 1) = 1
+    assert set(c["own"]) == set(own)
+    for s, v in var.items():
+        assert c["own"][s] == pytest.approx(math.sqrt(v), rel=1e-9)
+    k, n = 3, 6
+    pooled = sum(var.values()) / (n - k)
+    t = ((n - k) * math.log(pooled) - sum(math.log(v) for v in var.values())) / (
+        1 + (k * 1 - 1 / (n - k)) / (3 * (k - 1)))
+    assert c["bartlett_p"] == pytest.approx(stats.chi2.sf(t, k - 1), rel=1e-9)
+    assert scatter_check(ROWS[:1] + ROWS[6:])["k_zz"]["bartlett_p"] is None

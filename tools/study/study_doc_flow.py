@@ -8,8 +8,8 @@ import numpy as np
 
 from study_doc_claims import fit_cell, pm, table, z_cell, z_text
 from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of, line_trends,
-                              prolate_against_oblate, shape_means, solved, summary,
-                              verdicts)
+                              prolate_against_oblate, scatter_check, shape_means, solved,
+                              summary, verdicts)
 from study_stats import CHANCE_P, LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
@@ -68,6 +68,25 @@ def trends_text(trends):
             "%s on %s" % (v, ", ".join(lines))
             for v, lines in by_verdict([(line, d) for line, p, d in trends if p == q])))
         for q in QUANTITIES if any(p == q for _, p, _ in trends))
+
+
+def scatter_text(rows):
+    """the shapes' own seed scatter against the pooling's assumption that they scatter alike"""
+    parts = []
+    for q, c in scatter_check(rows).items():
+        if c["bartlett_p"] is None:
+            continue
+        low = min(c["own"], key=c["own"].get)
+        high = max(c["own"], key=c["own"].get)
+        parts.append("%s %.1f %% %s to %.1f %% %s, p = %.2g%s" % (
+            NAMES[q], 100 * c["own"][low], shape_name(low), 100 * c["own"][high],
+            shape_name(high), c["bartlett_p"],
+            " (beyond chance: the pooled error understates the most scattered shapes')"
+            if c["bartlett_p"] < CHANCE_P else ""))
+    if not parts:
+        return ""
+    return ("Each shape's own relative seed SD, and Bartlett's test that the shapes scatter "
+            "alike, as the pooling assumes: %s." % "; ".join(parts))
 
 
 def cost_text(rows):
@@ -173,6 +192,7 @@ def flow_lines_block(results):
     head += (" %d comparisons (the tables below): were there no effect at all, %.2f of them "
              "would be decided at 3 sigma by chance (p %g each). " % (
                  tests, tests * CHANCE_P, CHANCE_P) + cost_text(rows))
+    head = " ".join(filter(None, (head, scatter_text(rows))))
     decided = table(["eta, zeta", "quantity", "against", "difference", "z", "verdict"],
                     [[shape_text(s), NAMES[q], QUANTITIES[q][1],
                       ("%+.2e d^2" if SCALE[q] != 1.0 else "%+.3f") % d["difference"],

@@ -9,6 +9,7 @@ deposit).
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
     prolate_against_oblate(means) -> at equal aspect ratio, the prolate shape less the oblate
     line_trends(means) -> the slope of each quantity against a/c along each line
+    scatter_check(rows) -> each shape's own seed scatter and whether the shapes scatter alike
     summary(verdicts) -> per quantity the shapes of each verdict, undecided ones last
 
 Errors. A deposit's k carries the error of the extrapolation to a vanishing voxel
@@ -27,6 +28,7 @@ import math
 import os
 
 import numpy as np
+from scipy import stats
 
 from study_stats import (LINES, decide, effective_dof, line_fit, on_line, pooled_groups,
                          seeds_needed, significance)
@@ -111,6 +113,24 @@ def shape_means(rows):
                    mean * math.sqrt(np.mean(np.square(biases))))
             stat = None if sd is None else mean * sd / math.sqrt(len(rs))
             out[s][q] = {"mean": mean, "stat": stat, "sys": sys, "dof": dof}
+    return out
+
+
+def scatter_check(rows):
+    """{q: {"own": {shape: the seeds' relative SD}, "bartlett_p": p}}: whether the shapes with
+    two seeds or more scatter alike, as pooling their SDs assumes (Bartlett's test of equal
+    variances of the seeds' values relative to their shape's mean; None below two shapes)"""
+    shapes = {}
+    for r in rows:
+        shapes.setdefault((float(r["eta"]), float(r["zeta"])), []).append(r)
+    out = {}
+    for q in QUANTITIES:
+        relative = {s: np.array([r[q] for r in rs]) / np.mean([r[q] for r in rs])
+                    for s, rs in shapes.items() if len(rs) > 1}
+        p = (float(stats.bartlett(*relative.values()).pvalue)
+             if len(relative) > 1 and all(v.std() > 0 for v in relative.values()) else None)
+        out[q] = {"own": {s: float(v.std(ddof=1)) for s, v in relative.items()},
+                  "bartlett_p": p}
     return out
 
 
