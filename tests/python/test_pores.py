@@ -12,10 +12,12 @@
 - a real (small) deposit of examples/deposit/in.deposit: porosity from the dump against
   1 - phi of compute packing/ellipsoid, and the whole tool on its run folder.
 """
+import copy
 import csv
 import json
 import math
 import os
+import warnings
 
 import numpy as np
 import pytest
@@ -170,46 +172,117 @@ def test_tilted_cut_adds_up():
     assert min(zones) > 0
 
 
-def test_box_part_against_closed_forms():
-    """the volume and area of ellipsoids inside an axis-aligned box: a sphere at the box's
-    corner (an eighth of each), on an edge (a quarter), tilted triaxial ellipsoids on a face
-    (half of each, by central symmetry), wholly inside and wholly outside (exact)"""
-    semi = np.array([[0.5, 0.5, 0.5], [0.5, 0.5, 0.5], [0.9, 0.5, 0.25], [0.7, 0.4, 0.3],
-                     [0.9, 0.5, 0.25], [0.9, 0.5, 0.25]])
-    centres = np.array([[0, 0, 0], [0, 2, 0], [1, 1, 3], [1.7, 4, 2.2], [2, 2, 2],
-                        [9, 2, 2]], float)
+def sphere_beyond_two_planes(R, a, b):
+    """volume and area of a sphere (centre 0) where X > a and Y > b: slices in X, each a disk
+    of radius rho cut to Y > b (a circular segment) and a ring whose part with Y > b spans
+    2 acos(b / rho) of its angle (the sphere's area element R dX dpsi)"""
+    def rho(x):
+        return math.sqrt(max(R * R - x * x, 0.0))
+
+    def segment(x):
+        r = rho(x)
+        if b <= -r:
+            return math.pi * r * r
+        if b >= r:
+            return 0.0
+        return r * r * math.acos(b / r) - b * math.sqrt(r * r - b * b)
+
+    def ring(x):
+        r = rho(x)
+        return 2 * R * math.acos(min(max(b / r, -1.0), 1.0)) if r > 0 else 0.0
+
+    kinks = [x for x in (-math.sqrt(max(R * R - b * b, 0.0)), math.sqrt(max(R * R - b * b, 0.0)))
+             if a < x < R]
+    volume = integrate.quad(segment, a, R, epsabs=1e-13, epsrel=1e-11, limit=200,
+                            points=kinks or None)[0]
+    area = integrate.quad(ring, a, R, epsabs=1e-13, epsrel=1e-11, limit=200,
+                          points=kinks or None)[0]
+    return volume, area
+
+
+def test_box_part_at_edges_and_corners():
+    """spheres (turned at random, so that no quadrature node lies on a face) near an edge and
+    a corner of the box, against one- and two-dimensional integrals of the sphere cut by
+    planes; the tolerance the quadrature stops at holds for the box's totals; wholly inside
+    and outside exact"""
+    R = 0.5
+    centres = np.array([[0.1, 2.0, 0.15], [3.8, 0.3, 1.5], [0.1, 0.15, 0.2],
+                        [2.0, 2.0, 1.5], [9.0, 2.0, 1.5]])
     rng = np.random.default_rng(8)
-    p = pores.Particles(centres, geometry.random_quats(rng, len(centres)), semi)
-    box = ((0.0, 4.0), (0.0, 4.0), (0.0, 3.0))
-    fractions, areas, change = pore_surface.box_part(p, box, rtol=1e-4)
-    assert change <= 1e-4
-    whole = pore_surface.ellipsoid_area(semi)
-    share = np.array([1 / 8, 1 / 4, 1 / 2, 1 / 2])
-    # the tolerance the quadrature is stopped at holds for the cut particles' totals
-    assert fractions[:4] @ p.volumes[:4] == pytest.approx(share @ p.volumes[:4], rel=2e-4)
-    assert areas[:4].sum() == pytest.approx(share @ whole[:4], rel=2e-4)
-    np.testing.assert_allclose(fractions[:4], share, rtol=2e-3)    # and each within 0.2 %
-    np.testing.assert_allclose(areas[:4], share * whole[:4], rtol=2e-3)
-    assert fractions[4] == 1.0 and areas[4] == whole[4]
-    assert fractions[5] == 0.0 and areas[5] == 0.0
+    p = pores.Particles(centres, geometry.random_quats(rng, len(centres)),
+                        np.full((len(centres), 3), R))
+    fractions, areas, change = pore_surface.box_part(p, ((0.0, 4.0), (0.0, 4.0), (0.0, 3.0)),
+                                                     rtol=1e-5)
+    sphere_v, sphere_a = 4 / 3 * math.pi * R ** 3, 4 * math.pi * R ** 2
+    edge = [sphere_beyond_two_planes(R, -0.1, -0.15), sphere_beyond_two_planes(R, -0.2, -0.3)]
+
+    def corner_slice(x):    # the area of the slice X = x with Y > -0.15 and Z > -0.2
+        r2 = R * R - x * x
+        if r2 <= 0:
+            return 0.0
+
+        def height(y):
+            top = math.sqrt(max(r2 - y * y, 0.0))
+            return top - max(-0.2, -top)
+        kink = [y for y in (math.sqrt(max(r2 - 0.04, 0.0)),) if -0.15 < y < math.sqrt(r2)]
+        return integrate.quad(height, -0.15, math.sqrt(r2), epsabs=1e-12, epsrel=1e-10,
+                              points=kink or None)[0]
+    kink = [x for x in (math.sqrt(R * R - 0.04), math.sqrt(R * R - 0.15 ** 2),
+                        math.sqrt(R * R - 0.04 - 0.15 ** 2)) if -0.1 < x < R]
+    with warnings.catch_warnings():    # QUADPACK's roundoff note: its error estimate holds
+        warnings.simplefilter("ignore", integrate.IntegrationWarning)
+        corner, corner_error = integrate.quad(corner_slice, -0.1, R, epsabs=1e-10, epsrel=1e-9,
+                                              limit=200, points=kink)
+    assert corner_error < 1e-8
+    want_v = [edge[0][0], edge[1][0], corner]
+    np.testing.assert_allclose(fractions[:3] * sphere_v, want_v, rtol=1e-4)
+    np.testing.assert_allclose(areas[:2], [edge[0][1], edge[1][1]], rtol=2e-3)
+    assert change <= 1e-5
+    assert fractions[:4].sum() * sphere_v == pytest.approx(sphere_v + sum(want_v), rel=2e-5)
+    assert fractions[3] == 1.0 and areas[3] == pytest.approx(sphere_a, rel=1e-14)
+    assert fractions[4] == 0.0 and areas[4] == 0.0
 
 
-def test_box_part_is_the_slab_where_the_box_is_wide():
-    """tilted ellipsoids cut by the box's floor and ceiling only: the closed-form slab
-    fraction and the converged zone areas"""
+def test_box_part_along_one_axis_is_the_slab_turned():
+    """tilted ellipsoids that only the faces of x (or y) cut: the exact slab of the same
+    particles with x (or y) and z swapped; and the direction quadrature itself against the
+    slab's closed forms"""
     rng = np.random.default_rng(9)
     n = 6
     semi = np.tile([0.9, 0.5, 0.25], (n, 1))
-    centres = np.column_stack([rng.uniform(3, 7, n), rng.uniform(3, 7, n),
-                               rng.uniform(0.6, 1.4, n)])
-    p = pores.Particles(centres, geometry.random_quats(rng, n), semi)
-    fractions, areas, _ = pore_surface.box_part(p, ((0.0, 10.0), (0.0, 10.0), (0.9, 1.3)))
-    h = p.half_extent[:, 2]
-    t1 = np.clip((0.9 - centres[:, 2]) / h, -1, 1)
-    t2 = np.clip((1.3 - centres[:, 2]) / h, -1, 1)
-    zones, _ = pore_surface.converged_zone_area(semi, p.rotations, t1, t2)
-    np.testing.assert_allclose(fractions, pore_surface.slab_fraction(p, 0.9, 1.3), rtol=1e-4)
-    np.testing.assert_allclose(areas, zones, rtol=2e-3)
+    quats = geometry.random_quats(rng, n)
+    for axis in (0, 1):
+        c = np.column_stack([rng.uniform(3, 7, n), rng.uniform(3, 7, n), rng.uniform(3, 7, n)])
+        c[:, axis] = rng.uniform(0.6, 1.4, n)
+        p = pores.Particles(c, quats, semi)
+        box = [(0.0, 10.0)] * 3
+        box[axis] = (0.9, 1.3)
+        fractions, areas, change = pore_surface.box_part(p, box)
+        assert change == 0.0    # no edge: no quadrature
+        swap = [0, 1, 2]
+        swap[axis], swap[2] = 2, axis
+        turned = copy.copy(p)
+        turned.centres = p.centres[:, swap]
+        turned.half_extent = p.half_extent[:, swap]
+        turned.rotations = p.rotations[:, swap, :]
+        np.testing.assert_allclose(fractions, pore_surface.slab_fraction(turned, 0.9, 1.3),
+                                   rtol=1e-13)
+        h = turned.half_extent[:, 2]
+        t1 = np.clip((0.9 - turned.centres[:, 2]) / h, -1, 1)
+        t2 = np.clip((1.3 - turned.centres[:, 2]) / h, -1, 1)
+        zones, _ = pore_surface.converged_zone_area(semi, turned.rotations, t1, t2)
+        np.testing.assert_allclose(areas, zones, rtol=1e-11)
+        if axis == 1:
+            continue
+        # the quadrature converges to them at first order at least (the area's integrand is an
+        # indicator): its error falls eightfold or more from 128 to 1024 nodes
+        lo, hi = np.array([b[0] for b in box]), np.array([b[1] for b in box])
+        errors = []
+        for nodes in ((128, 256), (1024, 2048)):
+            f, a = pore_surface.box_quadrature(semi, p.rotations, c, lo, hi, nodes)
+            errors.append((np.abs(f - fractions).max(), np.abs(a / areas - 1).max()))
+        assert errors[1][0] < 1e-5 and errors[1][1] < 1e-4
+        assert errors[1][0] < errors[0][0] / 8 and errors[1][1] < errors[0][1] / 8
 
 
 # ---------------------------------------------------------------------------------------------

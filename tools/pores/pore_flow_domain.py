@@ -279,8 +279,7 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
     resolutions = [resolution(particles, box, domain, voxel, d, offsets, directions, progress,
                               workdir, solved) for voxel in voxels]
     out = {"units": "d^2", "d": d, "domain": domain.describe(d), "resolutions": resolutions,
-           "tolerance": pore_flow.TOLERANCE,
-           "medium": domain_medium(particles, box, domain, d)}
+           "tolerance": pore_flow.TOLERANCE}
     if len(resolutions) >= 3:
         out["extrapolation"] = {}
         for key in directions:
@@ -296,9 +295,16 @@ def flow_permeability(particles, box, zlo, zhi, voxels=None, progress=None, work
     else:
         out.update({key: resolutions[-1][key] for key in directions})
         out["anisotropy_xx_zz"] = resolutions[-1]["anisotropy_xx_zz"]
-    out["ratio_to_kozeny_carman"] = {key: out[key] / out["medium"]["kozeny_carman"]
-                                     for key in directions}
+    add_medium(out, particles, box)
     return out
+
+
+def add_medium(k, particles, box):
+    """k (flow_permeability's result, or one solved before it held them) gets its domain's
+    own medium and k over that medium's Kozeny-Carman k per direction solved"""
+    k["medium"] = domain_medium(particles, box, Domain.described(k["domain"]), k["d"])
+    k["ratio_to_kozeny_carman"] = {key: k[key] / k["medium"]["kozeny_carman"]
+                                   for key in ("xx", "yy", "zz") if key in k}
 
 
 def anisotropy(k):

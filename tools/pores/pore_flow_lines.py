@@ -40,13 +40,12 @@ def solve_folder(folder, out, voxels_per_d, directions, side):
     if os.path.exists(path):
         with open(path) as f:
             row = json.load(f)
-        if "medium" in row["flow"]:
+        if "ratio_to_kozeny_carman" in row["flow"]:
             return row
     particles, box = pores.read_dump(os.path.join(folder, "deposit.dump"))
     d = pore_flow_domain.volume_diameter(particles)
     if row is not None:    # solved before the domain's own medium was part of the solve
-        domain = pore_flow_domain.Domain.described(row["flow"]["domain"])
-        row["flow"]["medium"] = pore_flow_domain.domain_medium(particles, box, domain, d)
+        pore_flow_domain.add_medium(row["flow"], particles, box)
         row.pop("k_kozeny_carman", None)    # the slab's, not the domain's
     else:
         pk = pores.read_slab(folder)
@@ -149,6 +148,10 @@ def main(argv=None):
             print("pore_flow_lines: %s skipped: %s" % (folder, e), file=sys.stderr)
     if not rows:
         sys.exit("pore_flow_lines: no deposit solved")
+    for r in study_flow_lines.solved(args.out):    # earlier commands' deposits too
+        if "ratio_to_kozeny_carman" not in r["flow"]:
+            solve_folder(r["folder"], args.out, per_d, tuple(args.directions.split(",")),
+                         args.flow_box)
     t = table(study_flow_lines.solved(args.out))
     with open(os.path.join(args.out, "flow_lines.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(t[0]))

@@ -1,7 +1,8 @@
 """Exact volumes and areas of ellipsoids cut by a slab (tools/pores/pores.py): the solid fraction
 of each particle inside the slab (closed form), the area of an ellipsoid (Carlson's R_G) and
 of the zone a slab cuts from it (a converged quadrature); and both inside an axis-aligned box
-(the flow solve's cut box: a quadrature over the directions from each centre)."""
+(the flow solve's cut box: the slab's along one axis, a quadrature over the directions from
+the centre at its edges and corners)."""
 import math
 
 import numpy as np
@@ -18,13 +19,18 @@ def kozeny_carman(porosity, specific_surface):
     return porosity ** 3 / (KOZENY_CONSTANT * specific_surface ** 2)
 
 
-def slab_fraction(particles, zlo, zhi):
-    """fraction of each ellipsoid's volume between the planes: the section area at
-    t = (z - z_c)/h is (3 V / 4 h)(1 - t^2), h = sqrt(M_zz)"""
-    h = particles.half_extent[:, 2]
-    t1 = np.clip((zlo - particles.centres[:, 2]) / h, -1.0, 1.0)
-    t2 = np.clip((zhi - particles.centres[:, 2]) / h, -1.0, 1.0)
+def slab_fraction(particles, zlo, zhi, axis=2):
+    """fraction of each ellipsoid's volume between the planes normal to axis (z by default):
+    the section area at t = (z - z_c)/h is (3 V / 4 h)(1 - t^2), h = sqrt(M_zz)"""
+    t1, t2 = slab_heights(particles, zlo, zhi, axis)
     return np.maximum(0.75 * ((t2 - t1) - (t2 ** 3 - t1 ** 3) / 3.0), 0.0)
+
+
+def slab_heights(particles, lo, hi, axis):
+    """the planes' heights about each centre in units of its half-extent, clipped to [-1, 1]"""
+    h = particles.half_extent[:, axis]
+    c = particles.centres[:, axis]
+    return np.clip((lo - c) / h, -1.0, 1.0), np.clip((hi - c) / h, -1.0, 1.0)
 
 
 def ellipsoid_area(semi):
@@ -34,8 +40,9 @@ def ellipsoid_area(semi):
     return 4.0 * math.pi * a * b * c * special.elliprg(a ** -2, b ** -2, c ** -2)
 
 
-def zone_area(semi, rotations, t1, t2, nodes=QUADRATURE_NODES):
-    """area of the part of each ellipsoid surface between z_c + h t1 and z_c + h t2.
+def zone_area(semi, rotations, t1, t2, nodes=QUADRATURE_NODES, axis=2):
+    """area of the part of each ellipsoid surface between z_c + h t1 and z_c + h t2 (z: the
+    axis, 2 by default).
 
     The surface is the image of the unit sphere under x = z_c + R S u (S = diag(semi)), with
     area element abc |S^-1 u| dOmega. The height z = z_c + w.u, w = S R^T e_z, |w| = h, so the
@@ -44,7 +51,7 @@ def zone_area(semi, rotations, t1, t2, nodes=QUADRATURE_NODES):
     and Gauss-Legendre in t with the trapezoid rule in phi converge exponentially."""
     semi = np.asarray(semi, dtype=float).reshape(-1, 3)
     nt, nphi = nodes
-    w = semi * rotations[:, 2, :]
+    w = semi * rotations[:, axis, :]
     axis = w / np.linalg.norm(w, axis=1)[:, None]
     # an orthonormal pair perpendicular to the axis
     helper = np.where(np.abs(axis[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]])
@@ -63,11 +70,11 @@ def zone_area(semi, rotations, t1, t2, nodes=QUADRATURE_NODES):
     return np.prod(semi, axis=1) * 0.5 * (t2 - t1) * (inner @ wt)
 
 
-def converged_zone_area(semi, rotations, t1, t2, rtol=1e-12, max_nodes=(1024, 2048)):
+def converged_zone_area(semi, rotations, t1, t2, rtol=1e-12, max_nodes=(1024, 2048), axis=2):
     """zone_area with the nodes doubled per particle until two successive results agree to
     rtol; returns (areas, largest relative change of the last doubling)"""
     semi = np.asarray(semi, dtype=float).reshape(-1, 3)
-    areas = zone_area(semi, rotations, t1, t2)
+    areas = zone_area(semi, rotations, t1, t2, axis=axis)
     change = np.full(len(semi), np.inf)
     nodes = QUADRATURE_NODES
     todo = np.arange(len(semi))
@@ -79,7 +86,7 @@ def converged_zone_area(semi, rotations, t1, t2, rtol=1e-12, max_nodes=(1024, 20
         chunk = max(1, 2_000_000 // (nodes[0] * nodes[1]))
         for k in range(0, todo.size, chunk):
             sel = todo[k:k + chunk]
-            new = zone_area(semi[sel], rotations[sel], t1[sel], t2[sel], nodes)
+            new = zone_area(semi[sel], rotations[sel], t1[sel], t2[sel], nodes, axis)
             change[sel] = np.abs(new - areas[sel]) / np.maximum(np.abs(new), 1e-300)
             areas[sel] = new
         todo = todo[change[todo] > rtol]
@@ -106,31 +113,42 @@ def slab_surface(particles, zlo, zhi):
 
 def box_part(particles, ranges, rtol=1e-4, max_nodes=(1024, 2048)):
     """(volume fraction, surface area) of each ellipsoid inside the box ranges ((x0, x1),
-    (y0, y1), (z0, z1)): exact for the particles wholly inside or outside, a quadrature for
-    those a face cuts, its nodes doubled until the box's solid volume and area change by less
-    than rtol; returns (fractions, areas, that change)"""
+    (y0, y1), (z0, z1)): exact for the particles wholly inside or outside and for those that
+    only the faces of one axis cut (the slab along that axis: slab_fraction and the converged
+    zone area); a quadrature over the directions from the centre for those at the box's edges
+    and corners, its nodes doubled until the box's solid volume and area change by less than
+    rtol of their totals. Returns (fractions, areas, that change)."""
     lo = np.array([r[0] for r in ranges], float)
     hi = np.array([r[1] for r in ranges], float)
     c, h = particles.centres, particles.half_extent
-    inside = np.all((c - h >= lo) & (c + h <= hi), axis=1)
-    cut = ~inside & np.all((c + h > lo) & (c - h < hi), axis=1)
-    fractions = inside.astype(float)
-    areas = np.where(inside, ellipsoid_area(particles.semi), 0.0)
-    if not cut.any():
+    outside = np.any((c + h <= lo) | (c - h >= hi), axis=1)
+    crossed = ~outside[:, None] & ((c - h < lo) | (c + h > hi))    # by a face of that axis
+    fractions = (~outside).astype(float)
+    areas = np.where(outside, 0.0, ellipsoid_area(particles.semi))
+    for axis in range(3):
+        one = crossed[:, axis] & (crossed.sum(axis=1) == 1)
+        if one.any():
+            fractions[one] = slab_fraction(particles, lo[axis], hi[axis], axis)[one]
+            t1, t2 = slab_heights(particles, lo[axis], hi[axis], axis)
+            areas[one] = converged_zone_area(particles.semi[one], particles.rotations[one],
+                                             t1[one], t2[one], axis=axis)[0]
+    edges = crossed.sum(axis=1) > 1
+    if not edges.any():
         return fractions, areas, 0.0
-    semi, rotations, centres = particles.semi[cut], particles.rotations[cut], c[cut]
-    volumes = np.prod(semi, axis=1) * 4.0 * math.pi / 3.0
-    nodes, last, change = (64, 128), None, math.inf
-    while change > rtol:
+    volumes = particles.volumes
+    nodes, previous = (64, 128), None
+    while True:
+        f, a = box_quadrature(particles.semi[edges], particles.rotations[edges], c[edges], lo, hi,
+                              nodes)
+        fractions[edges], areas[edges] = f, a
+        if previous is not None:
+            change = max(abs((f - previous[0]) @ volumes[edges]) / (fractions @ volumes),
+                         abs((a - previous[1]).sum()) / areas.sum())
+            if change <= rtol:
+                return fractions, areas, change
+        previous, nodes = (f, a), tuple(2 * n for n in nodes)
         if nodes[0] > max_nodes[0]:
             raise RuntimeError("box quadrature did not converge to %g" % rtol)
-        f, a = box_quadrature(semi, rotations, centres, lo, hi, nodes)
-        if last is not None:
-            change = max(abs((f - last[0]) @ volumes) / max(f @ volumes, 1e-300),
-                         abs((a - last[1]).sum()) / max(a.sum(), 1e-300))
-        last, nodes = (f, a), tuple(2 * n for n in nodes)
-    fractions[cut], areas[cut] = last
-    return fractions, areas, change
 
 
 def box_quadrature(semi, rotations, centres, lo, hi, nodes):
@@ -138,7 +156,8 @@ def box_quadrature(semi, rotations, centres, lo, hi, nodes):
     (the slabs' intervals crossed with [0, 1]): the fraction of the volume inside is the mean
     over the directions of r1^3 - r0^3, the area the integral of abc |S^-1 u| over the
     directions whose surface point (r = 1) lies inside. Gauss-Legendre in cos(theta), the
-    trapezoid in phi; chunks of particles keep the arrays below about 50 MB."""
+    trapezoid in phi; chunks of particles keep each array below about 50 MB (six of them
+    at once)."""
     nt, nphi = nodes
     x, wt = np.polynomial.legendre.leggauss(nt)
     phi = 2.0 * math.pi * np.arange(nphi) / nphi

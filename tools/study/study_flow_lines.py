@@ -55,14 +55,17 @@ def solved(folder):
 def deposit_row(r):
     """one deposit's row from pore_flow_lines.py's json: k in d^2, each with its error"""
     k = r["flow"]
-    kc = k["medium"]["kozeny_carman"]    # the flow domain's own, in d^2
+    if "ratio_to_kozeny_carman" not in k:
+        raise ValueError("%s: solved before the flow domain's own medium was recorded: run "
+                         "tools/pores/pore_flow_lines.py on it again" % r.get("folder"))
+    ratio = k["ratio_to_kozeny_carman"]    # over the flow domain's own k_KC
     row = {"eta": r["eta"], "zeta": r["zeta"], "seed": r["seed"], "porosity": r["porosity"],
            "domain_porosity": k["medium"]["porosity"],
            "k_xx": k["xx"], "k_xx_error": k.get("xx_error", ""),
            "k_yy": k.get("yy", ""), "k_zz": k["zz"], "k_zz_error": k.get("zz_error", ""),
            "anisotropy": k["anisotropy_xx_zz"],
            "anisotropy_error": k.get("anisotropy_xx_zz_error", ""),
-           "k_zz_over_kozeny_carman": k["zz"] / kc, "k_xx_over_kozeny_carman": k["xx"] / kc}
+           "k_zz_over_kozeny_carman": ratio["zz"], "k_xx_over_kozeny_carman": ratio["xx"]}
     for q, key in EXTRAPOLATED.items():    # the bracket's half-width
         e = k.get("extrapolation", {}).get(key)
         row[q + "_bias"] = "" if e is None else 0.5 * abs(e["k0_fixed_p"] - e["k_finest"])
