@@ -210,6 +210,22 @@ def test_the_trend_along_a_line():
     assert line_trends(shape_means(rows[:4])) == []
 
 
+def test_a_trend_that_is_not_a_line():
+    """k_zz 1.0, 1.6, 1.2e-3 at a/c 1, 2, 3: chi^2 about the line beyond chance, so the
+    slope's error (both parts) is scaled by the Birge ratio, its dof are the line's n - 2 = 1,
+    and no number of seeds decides it"""
+    rows = [row(e, 1, seed, k * f, k * f) for e, k in ((1, 1.0e-3), (2, 1.6e-3), (3, 1.2e-3))
+            for seed, f in ((1, 0.99), (2, 1.01))]
+    d = {(line, q): t for line, q, t in line_trends(shape_means(rows))}[("prolate", "k_zz")]
+    assert d["lack_of_fit"] and d["chi2_p"] < 0.0027
+    birge = math.sqrt(d["chi2"] / 1)
+    assert d["se"] == pytest.approx(d["se_fit"] * birge, rel=1e-12)
+    assert math.hypot(d["stat"], d["sys"]) == pytest.approx(d["se"], rel=1e-9)
+    assert d["dof"] == 1 and d["seeds_needed"] is None
+    assert d["verdict"] == ("undecided at 2 seeds; no number of seeds decides it: the shapes "
+                            "leave the line beyond chance")
+
+
 def test_the_block_of_study_md(monkeypatch):
     """the whole generated block on hand-made rows: its sentences in order, the comparisons
     counted with what chance would decide, the four tables, and no cost without solves"""

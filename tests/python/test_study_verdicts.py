@@ -489,6 +489,7 @@ def test_slope_counts_its_lack_of_fit():
     assert t["lack_of_fit"] and t["dof"] == 3 and t["seeds_needed"] is None
     assert abs(t["slope"] / t["se_fit"]) > 3 > abs(t["z_equivalent"])
     assert t["verdict"].startswith("undecided") and "no number of seeds" in t["verdict"]
+    assert t["verdict"].endswith("the shapes leave the line beyond chance")
 
 
 def test_force_measures_from_window_means_with_one_error_per_shape():

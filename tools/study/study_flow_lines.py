@@ -30,8 +30,8 @@ import os
 import numpy as np
 from scipy import stats
 
-from study_stats import (LINES, decide, effective_dof, line_fit, on_line, pooled_groups,
-                         seeds_needed, significance)
+from study_stats import (LINES, NOT_A_LINE, decide, effective_dof, line_fit, on_line,
+                         pooled_groups, seeds_needed, significance)
 
 # quantity: (the deposit's bias of it, what the verdict compares it with)
 QUANTITIES = {"k_zz": ("k_zz_bias", "spheres"), "k_xx": ("k_xx_bias", "spheres"),
@@ -193,7 +193,9 @@ def line_trends(means):
             out.append((line, q, dict(fit, stat=stat * birge, sys=sys * birge,
                                       shapes=[list(s) for s in shapes],
                                       **decide(fit["slope"] / fit["se"], need, seeds,
-                                               "grows with a/c", "falls with a/c", dof))))
+                                               "grows with a/c", "falls with a/c", dof,
+                                               why_no_seeds=NOT_A_LINE
+                                               if fit["lack_of_fit"] else None))))
     return out
 
 

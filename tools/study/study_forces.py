@@ -34,7 +34,7 @@ import math
 import numpy as np
 from scipy import stats
 
-from study_stats import LINES, Pooled, decide, line_fit, on_line, seeds_needed
+from study_stats import LINES, NOT_A_LINE, Pooled, decide, line_fit, on_line, seeds_needed
 
 MEASURES = ("a_n", "a_f", "a_total", "K0")
 NAMES = {"a_n": "contact normals a_n", "a_f": "normal-force magnitude a_f",
@@ -72,7 +72,7 @@ def trend(pooled, shapes):
     out = {"slope_per_unit_a/c": dict(
         fit, **{"from_a/c": x[0], "to_a/c": x[-1], "points": len(x)},
         **decide(fit["slope"] / fit["se"], need, seeds, "grows with a/c", "falls with a/c",
-                 dof))}
+                 dof, why_no_seeds=NOT_A_LINE if fit["lack_of_fit"] else None))}
     out["thinnest_minus_roundest"] = difference(pooled, shapes[-1], shapes[0], seeds)
     # a trend that peaks: the largest value between the ends, above both, against each end
     top = max(shapes[1:-1], key=pooled.mean, default=None)

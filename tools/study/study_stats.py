@@ -241,9 +241,14 @@ def effective_dof(stat, dof, sys):
     return dof * (1.0 + (sys or 0.0) ** 2 / stat ** 2) ** 2
 
 
-def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA):
+NOT_A_LINE = "no number of seeds decides it: the shapes leave the line beyond chance"
+
+
+def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA, why_no_seeds=None):
     """the verdict at `sigma` on z (taken as Student's t with `dof` degrees of freedom when
-    given): {z, dof, z_equivalent, seeds_needed (None once decided), verdict}"""
+    given): {z, dof, z_equivalent, seeds_needed (None once decided), verdict}; why_no_seeds:
+    why no number of seeds decides it where needed is None (default: no difference, or a
+    systematic of a third of it or more)"""
     ze = equivalent_sigma(z, dof)
     out = {"z": z, "dof": dof, "z_equivalent": ze, "seeds_needed": None}
     if ze is None:
@@ -252,9 +257,9 @@ def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA):
         out["verdict"] = yes
     elif ze <= -sigma:
         out["verdict"] = no
-    elif needed is None:    # no difference, or a systematic of a third of it or more
-        out["verdict"] = ("undecided at %s seeds; no number of seeds decides it at this "
-                          "difference" % seeds)
+    elif needed is None:
+        out["verdict"] = "undecided at %s seeds; %s" % (
+            seeds, why_no_seeds or "no number of seeds decides it at this difference")
     else:
         needed = max(needed, max(int(k) for k in re.findall(r"\d+", str(seeds))) + 1)
         out["seeds_needed"] = needed

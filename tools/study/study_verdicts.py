@@ -20,8 +20,8 @@ import numpy as np
 from scipy import stats
 
 from study_histograms import crossings_both, sphere_isotropy
-from study_stats import (CHANCE_P, MIN_DOF, SIGMA, THIN, decide, equivalent_sigma, seeds_needed,
-                         line_fit, sign_test, significance)
+from study_stats import (CHANCE_P, MIN_DOF, NOT_A_LINE, SIGMA, THIN, decide, equivalent_sigma,
+                         line_fit, seeds_needed, sign_test, significance)
 
 GOLDEN = (1 + math.sqrt(5)) / 2
 QUANTITIES = ("phi", "Z", "Qzz", "fabric_anisotropy")
@@ -288,7 +288,8 @@ def slope_entry(z, shapes):
         dof = min(dof, fit["dof_lack_of_fit"])
     need = None if fit["lack_of_fit"] else seeds_needed(fit["slope"], [(fit["se"], counts[0])])
     return dict(fit, **{"from": shapes[0][0], "to": shapes[-1][0], "points": len(shapes)},
-                **decide(fit["slope"] / fit["se"], need, seeds, "rises", "falls", dof))
+                **decide(fit["slope"] / fit["se"], need, seeds, "rises", "falls", dof,
+                         why_no_seeds=NOT_A_LINE if fit["lack_of_fit"] else None))
 
 
 def fall_back(sel):
