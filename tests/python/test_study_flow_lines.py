@@ -261,3 +261,5 @@ def test_the_shapes_scatter_alike_bartlett_by_hand():
         1 + (k * 1 - 1 / (n - k)) / (3 * (k - 1)))
     assert c["bartlett_p"] == pytest.approx(stats.chi2.sf(t, k - 1), rel=1e-9)
     assert scatter_check(ROWS[:1] + ROWS[6:])["k_zz"]["bartlett_p"] is None
+    twice = scatter_check(ROWS + [ROWS[6]])["k_zz"]    # the lone seed counted twice
+    assert twice["identical"] == [(1.0, 3.0)] and twice["bartlett_p"] is None

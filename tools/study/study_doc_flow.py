@@ -8,8 +8,8 @@ import numpy as np
 
 from study_doc_claims import fit_cell, pm, table, z_cell, z_text
 from study_flow_lines import (QUANTITIES, by_verdict, deposit_row, line_of, line_trends,
-                              prolate_against_oblate, scatter_check, shape_means, solved,
-                              summary, verdicts)
+                              prolate_against_oblate, scatter_check, seeds_text, shape_means,
+                              solved, summary, verdicts)
 from study_stats import CHANCE_P, LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
@@ -74,6 +74,9 @@ def scatter_text(rows):
     """the shapes' own seed scatter against the pooling's assumption that they scatter alike"""
     parts = []
     for q, c in scatter_check(rows).items():
+        if c["identical"]:
+            parts.append("%s: the seeds of %s agree exactly (one deposit counted twice?), no "
+                         "test" % (NAMES[q], ", ".join(map(shape_name, c["identical"]))))
         if c["bartlett_p"] is None:
             continue
         low = min(c["own"], key=c["own"].get)
@@ -138,8 +141,7 @@ def summary_rows(results):
     ends = list(dict.fromkeys(    # in LINES' order
         max((s for s in aspherical if on_line(line, *s)), key=lambda s: s[0] * s[1])
         for line in LINES if any(on_line(line, *s) for s in aspherical)))
-    seeds = "seeds per shape: %s" % "-".join(
-        map(str, sorted({len(means[s]["seeds"]) for s in shapes})))
+    seeds = "seeds per shape: %s" % seeds_text(means, shapes)
     decisions = verdicts(means)
     out = []
     for q, groups in summary(decisions).items():

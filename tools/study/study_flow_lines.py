@@ -19,8 +19,9 @@ each deposit, like the box's sampling: part of the seeds' scatter). A shape's me
 statistical error, the seeds' relative SD pooled per group of shapes as the study pools
 (study_stats.pooled_groups) / sqrt(seeds), and a systematic one, the rms of its deposits'
 relative half-widths, not reduced by averaging. A verdict needs SIGMA standard errors of the
-two combined, as the normal equivalent of Student's t with the pooled SD's degrees of freedom
-(study_stats.decide); without an error estimate it is undecided.
+two combined, as the normal equivalent of Student's t with Welch-Satterthwaite's effective
+degrees of freedom (study_stats.effective_dof: the pooled SD's, the bias a bound with none of
+its own; study_stats.decide); without an error estimate it is undecided.
 """
 import glob
 import json
@@ -93,20 +94,30 @@ def relative_bias(row, q):
     return float(bias) / float(row[bias_key[:-len("_bias")]])
 
 
+def by_shape(rows):
+    """{(eta, zeta): [rows]}"""
+    shapes = {}
+    for r in rows:
+        shapes.setdefault((float(r["eta"]), float(r["zeta"])), []).append(r)
+    return shapes
+
+
+def relative(rs, q):
+    """the seeds' values of q over their mean"""
+    values = np.array([r[q] for r in rs], float)
+    return values / values.mean()
+
+
 def shape_means(rows):
     """{(eta, zeta): {"seeds": [...], q: {mean, stat, sys, dof}}, "pooled": {q: {group: (sd,
     dof)}}}: stat the seeds' standard error (relative SD pooled per group of shapes), sys the
     rms relative extrapolation bias, both times the mean"""
-    shapes = {}
-    for r in rows:
-        shapes.setdefault((float(r["eta"]), float(r["zeta"])), []).append(r)
+    shapes = by_shape(rows)
     out = {"pooled": {}}
     for s, rs in shapes.items():
         out[s] = {"seeds": sorted(int(r["seed"]) for r in rs)}
     for q in QUANTITIES:
-        relative = {s: list(np.array([r[q] for r in rs]) / np.mean([r[q] for r in rs]))
-                    for s, rs in shapes.items()}
-        groups, of_shape = pooled_groups(relative)
+        groups, of_shape = pooled_groups({s: list(relative(rs, q)) for s, rs in shapes.items()})
         out["pooled"][q] = {g: (e["sd"], e["dof"]) for g, e in groups.items()}
         for s, rs in shapes.items():
             sd, dof = out["pooled"][q][of_shape[s]]
@@ -120,21 +131,25 @@ def shape_means(rows):
 
 
 def scatter_check(rows):
-    """{q: {"own": {shape: the seeds' relative SD}, "bartlett_p": p}}: whether the shapes with
-    two seeds or more scatter alike, as pooling their SDs assumes (Bartlett's test of equal
-    variances of the seeds' values relative to their shape's mean; None below two shapes)"""
-    shapes = {}
-    for r in rows:
-        shapes.setdefault((float(r["eta"]), float(r["zeta"])), []).append(r)
+    """{q: {"own": {shape: the seeds' relative SD}, "bartlett_p": p, "identical": [shapes]}}:
+    whether the shapes with two seeds or more scatter alike, as pooling their SDs assumes
+    (Bartlett's test of equal variances of the seeds' values relative to their shape's mean;
+    None below two shapes, and where a shape's seeds agree exactly, listed in "identical": a
+    deposit counted twice?)"""
     out = {}
     for q in QUANTITIES:
-        relative = {s: np.array([r[q] for r in rs]) / np.mean([r[q] for r in rs])
-                    for s, rs in shapes.items() if len(rs) > 1}
-        p = (float(stats.bartlett(*relative.values()).pvalue)
-             if len(relative) > 1 and all(v.std() > 0 for v in relative.values()) else None)
-        out[q] = {"own": {s: float(v.std(ddof=1)) for s, v in relative.items()},
-                  "bartlett_p": p}
+        own = {s: relative(rs, q) for s, rs in by_shape(rows).items() if len(rs) > 1}
+        identical = sorted(s for s, v in own.items() if v.std() == 0)
+        p = (float(stats.bartlett(*own.values()).pvalue)
+             if len(own) > 1 and not identical else None)
+        out[q] = {"own": {s: float(v.std(ddof=1)) for s, v in own.items()}, "bartlett_p": p,
+                  "identical": identical}
     return out
+
+
+def seeds_text(means, shapes):
+    """the seeds per shape of the shapes, as 2 or 1-2"""
+    return "-".join(sorted({"%d" % len(means[s]["seeds"]) for s in shapes}))
 
 
 def verdicts(means):
@@ -187,7 +202,7 @@ def line_trends(means):
             if fit["lack_of_fit"]:
                 dof = min(dof or math.inf, fit["dof_lack_of_fit"])
             fewest = min(len(means[s]["seeds"]) for s in shapes)
-            seeds = "-".join(sorted({"%d" % len(means[s]["seeds"]) for s in shapes}))
+            seeds = seeds_text(means, shapes)
             need = (None if fit["lack_of_fit"] else
                     seeds_needed(fit["slope"], [(stat, fewest)], sys))
             out.append((line, q, dict(fit, stat=stat * birge, sys=sys * birge,
@@ -218,7 +233,7 @@ def compare(means, q, s, ref, words=None):
     known = None not in biases and all(p[0] is not None for p in parts)
     stat = math.sqrt(sum(p[0] ** 2 for p in parts)) if known else None
     sys = math.sqrt(sum(b ** 2 for b in biases)) if known else 0.0
-    seeds = "-".join(sorted({"%d" % len(means[t]["seeds"]) for t in compared}))
+    seeds = seeds_text(means, compared)
     d = decide(significance(diff, stat, sys), seeds_needed(diff, parts, sys), seeds, *words,
                effective_dof(stat, dof, sys))
     d.update(difference=diff, stat=stat, sys=sys)
