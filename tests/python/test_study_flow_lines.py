@@ -263,3 +263,12 @@ def test_the_shapes_scatter_alike_bartlett_by_hand():
     assert scatter_check(ROWS[:1] + ROWS[6:])["k_zz"]["bartlett_p"] is None
     twice = scatter_check(ROWS + [ROWS[6]])["k_zz"]    # the lone seed counted twice
     assert twice["identical"] == [(1.0, 3.0)] and twice["bartlett_p"] is None
+
+
+def test_a_deposit_solved_before_the_domain_medium_is_named():
+    """a json without the flow domain's own medium (solved before it was recorded): a clear
+    error naming the folder and what to run, not a KeyError"""
+    old = {"folder": "runs/x", "eta": 1, "zeta": 1, "seed": 1, "porosity": 0.4,
+           "flow": {"xx": 1e-3, "zz": 1e-3, "anisotropy_xx_zz": 1.0}}
+    with pytest.raises(ValueError, match="runs/x: solved before .* pore_flow_lines.py"):
+        deposit_row(old)
