@@ -40,34 +40,36 @@ def shape_name(s):
     return "the spheres" if s == (1.0, 1.0) else "(%s)" % shape_text(s)
 
 
+def verdict_sentences(lead, items, where):
+    """lead, then one sentence per quantity: its verdicts, each with where(keys) it holds, the
+    undecided last; items [(key, q, decision)]"""
+    return lead + " ".join(
+        "%s: %s." % (NAMES[q], "; ".join("%s %s" % (v, where(keys)) for v, keys in by_verdict(
+            [(key, d) for key, p, d in items if p == q])))
+        for q in QUANTITIES if any(p == q for _, p, _ in items))
+
+
 def summary_text(decisions):
-    """one sentence per quantity: which shapes differ (3 sigma) and which are undecided"""
-    return "Summary (verdicts at 3 sigma, the tables last): " + " ".join(
-        "%s: %s." % (NAMES[q], "; ".join("%s at %s" % (verdict, ", ".join(map(shape_name, ss)))
-                                         for verdict, ss in groups))
-        for q, groups in summary(decisions).items())
+    """which shapes differ (3 sigma) from the spheres or isotropy and which are undecided"""
+    return verdict_sentences("Summary (verdicts at 3 sigma, the tables last): ",
+                             sorted(decisions, key=lambda v: v[0]),
+                             lambda ss: "at " + ", ".join(map(shape_name, ss)))
 
 
 def pairs_text(pairs):
-    """one sentence per quantity: at which aspect ratios the prolate and oblate shapes differ"""
+    """at which aspect ratios the prolate and oblate shapes differ"""
     if not pairs:
         return "Prolate against oblate: no aspect ratio solved on both lines yet."
-    return "Prolate (a, 1) against oblate (1, a) at equal a: " + " ".join(
-        "%s: %s." % (NAMES[q], "; ".join(
-            "%s at a = %s" % (v, ", ".join("%g" % a for a in ratios))
-            for v, ratios in by_verdict([(a, d) for a, p, d in pairs if p == q])))
-        for q in QUANTITIES if any(p == q for _, p, _ in pairs))
+    return verdict_sentences("Prolate (a, 1) against oblate (1, a) at equal a: ", pairs,
+                             lambda ratios: "at a = " + ", ".join("%g" % a for a in ratios))
 
 
 def trends_text(trends):
-    """one sentence per quantity: the lines along which it grows or falls with a/c"""
+    """the lines along which each quantity grows or falls with a/c"""
     if not trends:
         return "Along the lines: no line has three shapes solved yet."
-    return "Along the lines (the weighted slope against a/c): " + " ".join(
-        "%s: %s." % (NAMES[q], "; ".join(
-            "%s on %s" % (v, ", ".join(lines))
-            for v, lines in by_verdict([(line, d) for line, p, d in trends if p == q])))
-        for q in QUANTITIES if any(p == q for _, p, _ in trends))
+    return verdict_sentences("Along the lines (the weighted slope against a/c): ", trends,
+                             lambda lines: "on " + ", ".join(lines))
 
 
 def scatter_text(rows):
