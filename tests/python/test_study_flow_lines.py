@@ -22,7 +22,8 @@ def row(eta, zeta, seed, k_zz, k_xx, err=0.01, kc=1.0e-3):
     return deposit_row({
         "eta": eta, "zeta": zeta, "seed": seed, "porosity": 0.4,
         "flow": {"medium": {"porosity": 0.41, "kozeny_carman": kc},
-                 "ratio_to_kozeny_carman": {"xx": k_xx / kc, "zz": k_zz / kc}, "xx": k_xx, "xx_error": 2 * err * k_xx, "zz": k_zz, "zz_error": 2 * err * k_zz,
+                 "ratio_to_kozeny_carman": {"xx": k_xx / kc, "zz": k_zz / kc},
+                 "xx": k_xx, "xx_error": 2 * err * k_xx, "zz": k_zz, "zz_error": 2 * err * k_zz,
                  "anisotropy_xx_zz": a, "anisotropy_xx_zz_error": 2 * err * a,
                  "extrapolation": {"xx": bracket(k_xx, err), "zz": bracket(k_zz, err),
                                    "anisotropy_xx_zz": bracket(a, err)}}})

@@ -150,8 +150,12 @@ def main(argv=None):
         sys.exit("pore_flow_lines: no deposit solved")
     for r in study_flow_lines.solved(args.out):    # earlier commands' deposits too
         if "ratio_to_kozeny_carman" not in r["flow"]:
-            solve_folder(r["folder"], args.out, per_d, tuple(args.directions.split(",")),
-                         args.flow_box)
+            try:
+                solve_folder(r["folder"], args.out, per_d, tuple(args.directions.split(",")),
+                             args.flow_box)
+            except (ValueError, RuntimeError, OSError) as e:
+                sys.exit("pore_flow_lines: %s in %s has no flow domain medium yet and it cannot "
+                         "be added: %s" % (r["folder"], args.out, e))
     t = table(study_flow_lines.solved(args.out))
     with open(os.path.join(args.out, "flow_lines.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(t[0]))

@@ -154,7 +154,8 @@ def summary_rows(results):
                     "solved" % (NAMES[q], "1" if against == "isotropy" else "the spheres'",
                                 " in 1e-4 d^2" if SCALE[q] != 1.0 else "", seeds,
                                 "the spheres and " if against == "isotropy" else ""),
-                    "; ".join(difference_cell(shape_name(s), q, found[s]) for s in shown if s in found),
+                    "; ".join(difference_cell(shape_name(s), q, found[s])
+                              for s in shown if s in found),
                     counted([(v, list(map(shape_name, ss))) for v, ss in groups], "shapes")])
     pairs = [(a, d) for a, q, d in prolate_against_oblate(means) if q == "anisotropy"]
     if pairs:

@@ -211,8 +211,8 @@ def seeds_needed(difference, parts, sys=0.0, sigma=SIGMA):
     """seeds per point for `difference` to be `sigma` standard errors of the normal, the
     statistical error shrinking as 1/sqrt(seeds): a lower bound, as Student's t at the degrees
     of freedom of those seeds needs as many or more. parts [(standard error now, seeds now),
-    ...], one per independent term. None when there is no difference, or when the fixed systematic alone
-    is a third of the difference or more (no number of seeds decides it)."""
+    ...], one per independent term. None when there is no difference, or when the fixed
+    systematic alone is a third of the difference or more (no number of seeds decides it)."""
     if any(se is None for se, _ in parts):
         return None
     room = (difference / sigma) ** 2 - (sys or 0.0) ** 2
