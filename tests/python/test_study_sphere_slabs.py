@@ -48,4 +48,11 @@ def test_seeds_beyond_counting_scale_the_errors():
     chi2 = float(np.sum((n.sum(0) - e.sum(0)) ** 2 / e.sum(0)))
     assert s["chi2"] == pytest.approx(chi2 / birge ** 2)
     one = sphere_slabs_summary(rows("viscous", "high", 1, [0.0] * 3, [100] * 3))
-    assert one[("viscous", "high")]["birge"] is None    # one seed: no consistency to test
+    flat = one[("viscous", "high")]
+    assert flat["birge"] is None    # one seed: no consistency to test
+    # counts equal to the isotropic expectation: chi^2 0, p 1, Poisson errors sqrt(100) / 100
+    assert flat["chi2"] == 0.0 and flat["p"] == 1.0
+    assert flat["se"] == pytest.approx([0.1] * 3)
+    # laws and slabs stay apart
+    both = sphere_slabs_summary(data + rows("viscous", "high", 1, [0.0] * 3, [100] * 3))
+    assert set(both) == {("coulomb", "high"), ("viscous", "high")}
