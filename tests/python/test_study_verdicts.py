@@ -103,6 +103,11 @@ def test_seeds_needed_and_the_sign_test():
     assert p == pytest.approx(stats.binomtest(22, 28).pvalue, rel=1e-9)
     assert study_stats.decide(2.1, 8, 2, "yes", "no")["verdict"].endswith("needs at least 8")
     assert study_stats.decide(-3.2, None, 2, "yes", "no")["verdict"] == "no"
+    # the seeds said in words: one seed, several, a range
+    assert study_stats.decide(1.0, 21, 1, "yes", "no")["verdict"] == (
+        "undecided at 1 seed; needs at least 21")
+    assert study_stats.decide(0.1, None, "1-2", "yes", "no")["verdict"].startswith(
+        "undecided at 1-2 seeds; no number")
     # Student's t: 3.03 standard errors from an SD of 10 degrees of freedom are p = 0.013,
     # 2.5 sigma: undecided, and at least one seed more than now
     d = study_stats.decide(3.03, 2, 3, "yes", "no", dof=10)

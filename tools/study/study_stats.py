@@ -241,6 +241,11 @@ def effective_dof(stat, dof, sys):
     return dof * (1.0 + (sys or 0.0) ** 2 / stat ** 2) ** 2
 
 
+def seeds_words(seeds):
+    """'1 seed', '2 seeds', '1-2 seeds': the seeds per point as a verdict says them"""
+    return "%s seed%s" % (seeds, "" if str(seeds) == "1" else "s")
+
+
 NOT_A_LINE = "no number of seeds decides it: the shapes leave the line beyond chance"
 
 
@@ -258,14 +263,14 @@ def decide(z, needed, seeds, yes, no, dof=None, sigma=SIGMA, why_no_seeds=None):
     elif ze <= -sigma:
         out["verdict"] = no
     elif needed is None:
-        out["verdict"] = "undecided at %s seeds; %s" % (
-            seeds, why_no_seeds or "no number of seeds decides it at this difference")
+        out["verdict"] = "undecided at %s; %s" % (
+            seeds_words(seeds), why_no_seeds or "no number of seeds decides it at this difference")
     else:
         needed = max(needed, max(int(k) for k in re.findall(r"\d+", str(seeds))) + 1)
         out["seeds_needed"] = needed
-        out["verdict"] = ("undecided at %s seeds; needs more than %d (the difference measured "
-                          "is near 0)" % (seeds, LARGE) if needed > LARGE else
-                          "undecided at %s seeds; needs at least %d" % (seeds, needed))
+        out["verdict"] = ("undecided at %s; needs more than %d (the difference measured "
+                          "is near 0)" % (seeds_words(seeds), LARGE) if needed > LARGE else
+                          "undecided at %s; needs at least %d" % (seeds_words(seeds), needed))
     return out
 
 
