@@ -50,6 +50,10 @@ def test_the_errors_of_a_shape_mean():
     assert one["stat"] == pytest.approx(1.05e-3 * sd, rel=1e-12)
     assert one["sys"] == pytest.approx(0.03 * 1.05e-3, rel=1e-12)
     assert means[(1.0, 1.0)]["k_zz_over_kozeny_carman"]["mean"] == pytest.approx(1.01)
+    # k_xx / k_KC carries k_xx's relative bias: (2, 2)'s 1.92 and 1.968 over k_KC 1e-3
+    kx = means[(2.0, 2.0)]["k_xx_over_kozeny_carman"]
+    assert kx["mean"] == pytest.approx(1.944, rel=1e-12)
+    assert kx["sys"] == pytest.approx(0.01 * 1.944, rel=1e-12)
 
 
 def sd_by_hand():
@@ -131,7 +135,8 @@ def test_without_spheres_no_comparison_with_them():
 def test_the_summary_groups_shapes_by_verdict():
     """the verdicts above (worked out by hand there) grouped per quantity, undecided last"""
     got = summary(verdicts(shape_means(ROWS)))
-    assert list(got) == ["k_zz", "k_xx", "anisotropy", "k_zz_over_kozeny_carman"]
+    assert list(got) == ["k_zz", "k_xx", "anisotropy", "k_zz_over_kozeny_carman",
+                         "k_xx_over_kozeny_carman"]
     assert got["k_zz"] == [("higher than the spheres'", [(2.0, 2.0), (3.0, 1.0)]),
                            ("undecided", [(1.0, 3.0)])]
     assert got["anisotropy"] == [("k_xx > k_zz", [(2.0, 2.0)]),

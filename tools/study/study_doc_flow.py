@@ -14,9 +14,11 @@ from study_stats import CHANCE_P, LINES, on_line
 
 PLANNED = 2 * (1 + 3 * len(LINES))    # 2 seeds: the spheres and 3 shapes on each line
 NAMES = {"k_zz": "k_zz", "k_xx": "k_xx", "anisotropy": "k_xx / k_zz",
-         "k_zz_over_kozeny_carman": "k_zz / k_KC"}
-SCALE = {"k_zz": 1e-4, "k_xx": 1e-4, "anisotropy": 1.0, "k_zz_over_kozeny_carman": 1.0}
-DIGITS = {"k_zz": 2, "k_xx": 2, "anisotropy": 3, "k_zz_over_kozeny_carman": 3}
+         "k_zz_over_kozeny_carman": "k_zz / k_KC", "k_xx_over_kozeny_carman": "k_xx / k_KC"}
+SCALE = {"k_zz": 1e-4, "k_xx": 1e-4, "anisotropy": 1.0, "k_zz_over_kozeny_carman": 1.0,
+         "k_xx_over_kozeny_carman": 1.0}
+DIGITS = {"k_zz": 2, "k_xx": 2, "anisotropy": 3, "k_zz_over_kozeny_carman": 3,
+          "k_xx_over_kozeny_carman": 3}
 
 
 def load_rows(folder):

@@ -3,8 +3,8 @@ lines"; the solves: tools/pores/pore_flow_lines.py, one results/flow_lines/<run>
 deposit).
 
     solved(folder)    -> every deposit's json in pore_flow_lines.py's output folder
-    deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC with their errors,
-                         and its cost (deposit_cost)
+    deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC, k_xx / k_KC with
+                         their errors, and its cost (deposit_cost)
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
     verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
     prolate_against_oblate(means) -> at equal aspect ratio, the prolate shape less the oblate
@@ -37,7 +37,8 @@ from study_stats import (LINES, NOT_A_LINE, decide, effective_dof, line_fit, on_
 # quantity: (the deposit's bias of it, what the verdict compares it with)
 QUANTITIES = {"k_zz": ("k_zz_bias", "spheres"), "k_xx": ("k_xx_bias", "spheres"),
               "anisotropy": ("anisotropy_bias", "isotropy"),
-              "k_zz_over_kozeny_carman": ("k_zz_bias", "spheres")}
+              "k_zz_over_kozeny_carman": ("k_zz_bias", "spheres"),
+              "k_xx_over_kozeny_carman": ("k_xx_bias", "spheres")}
 EXTRAPOLATED = {"k_xx": "xx", "k_zz": "zz", "anisotropy": "anisotropy_xx_zz"}
 SPHERES = (1.0, 1.0)
 
