@@ -15,8 +15,9 @@ solve is kept in OUT/<folder name>.solves/ as it finishes, so a stopped run resu
 OUT/flow_lines.csv (one row per deposit solved in OUT, by this command or an earlier one: eta,
 zeta, seed, porosity, k_xx, k_zz in d^2 with their errors, the anisotropy, the ratio to Kozeny-
 Carman, the finest voxel's cells, the iterations, the seconds summed over the solves: wall and
-solver CPU) and OUT/flow_lines.png (k_xx, k_zz, anisotropy and k_zz / k_KC against the aspect
-ratio on each line: the seeds and their mean with its error, tools/study/study_flow_lines.py).
+solver CPU) and OUT/flow_lines.png (k_xx, k_zz, anisotropy, k_zz / k_KC and k_xx / k_KC against
+the aspect ratio on each line: the seeds and their mean with its error,
+tools/study/study_flow_lines.py).
 """
 import argparse
 import csv
@@ -82,15 +83,16 @@ def table(rows):
 
 
 def plot(rows, path):
-    """k_xx, k_zz, k_xx / k_zz and k_zz / k_KC against the line's aspect ratio, one colour per
-    line: the seeds (open) and their mean with its error (statistical and extrapolation's
-    combined)"""
+    """k_xx, k_zz, k_xx / k_zz, k_zz / k_KC and k_xx / k_KC against the line's aspect ratio, one
+    colour per line: the seeds (open) and their mean with its error (statistical and
+    extrapolation's combined)"""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     panels = (("k_xx", r"$k_{xx}$ ($d^2$)"), ("k_zz", r"$k_{zz}$ ($d^2$)"),
               ("anisotropy", r"$k_{xx} / k_{zz}$"),
-              ("k_zz_over_kozeny_carman", r"$k_{zz} / k_{KC}$"))
+              ("k_zz_over_kozeny_carman", r"$k_{zz} / k_{KC}$"),
+              ("k_xx_over_kozeny_carman", r"$k_{xx} / k_{KC}$"))
     means = study_flow_lines.shape_means(rows)
     fig, axes = plt.subplots(1, len(panels), figsize=(4.0 * len(panels), 3.4))
     for ax, (key, label) in zip(axes, panels):
