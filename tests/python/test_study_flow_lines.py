@@ -15,17 +15,18 @@ def bracket(k, err):
     return {"k0_fixed_p": k * (1 - err), "k_finest": k * (1 + err)}
 
 
-def row(eta, zeta, seed, k_zz, k_xx, err=0.01, kc=1.0e-3):
-    """a deposit's json as pore_flow_lines.py writes it: relative half-widths err, and total
-    errors (half-width and standard errors) twice that"""
+def row(eta, zeta, seed, k_zz, k_xx, err=0.01, kc=1.0e-3, err_xx=None):
+    """a deposit's json as pore_flow_lines.py writes it: relative half-widths err (err_xx for
+    k_xx when given), and total errors (half-width and standard errors) twice that"""
     a = k_xx / k_zz
+    err_xx = err if err_xx is None else err_xx
     return deposit_row({
         "eta": eta, "zeta": zeta, "seed": seed, "porosity": 0.4,
         "flow": {"medium": {"porosity": 0.41, "kozeny_carman": kc},
                  "ratio_to_kozeny_carman": {"xx": k_xx / kc, "zz": k_zz / kc},
-                 "xx": k_xx, "xx_error": 2 * err * k_xx, "zz": k_zz, "zz_error": 2 * err * k_zz,
+                 "xx": k_xx, "xx_error": 2 * err_xx * k_xx, "zz": k_zz, "zz_error": 2 * err * k_zz,
                  "anisotropy_xx_zz": a, "anisotropy_xx_zz_error": 2 * err * a,
-                 "extrapolation": {"xx": bracket(k_xx, err), "zz": bracket(k_zz, err),
+                 "extrapolation": {"xx": bracket(k_xx, err_xx), "zz": bracket(k_zz, err),
                                    "anisotropy_xx_zz": bracket(a, err)}}})
 
 
@@ -50,10 +51,18 @@ def test_the_errors_of_a_shape_mean():
     assert one["stat"] == pytest.approx(1.05e-3 * sd, rel=1e-12)
     assert one["sys"] == pytest.approx(0.03 * 1.05e-3, rel=1e-12)
     assert means[(1.0, 1.0)]["k_zz_over_kozeny_carman"]["mean"] == pytest.approx(1.01)
-    # k_xx / k_KC carries k_xx's relative bias: (2, 2)'s 1.92 and 1.968 over k_KC 1e-3
-    kx = means[(2.0, 2.0)]["k_xx_over_kozeny_carman"]
-    assert kx["mean"] == pytest.approx(1.944, rel=1e-12)
-    assert kx["sys"] == pytest.approx(0.01 * 1.944, rel=1e-12)
+    # (2, 2)'s k_xx 1.92e-3 and 1.968e-3 over k_KC 1e-3
+    assert means[(2.0, 2.0)]["k_xx_over_kozeny_carman"]["mean"] == pytest.approx(1.944)
+
+
+def test_k_over_kozeny_carman_carries_its_own_direction_s_bias():
+    """k_xx / k_KC takes k_xx's relative extrapolation bias (4 % here), k_zz / k_KC k_zz's (1 %)"""
+    rows = [row(1, 1, 4, 1.00e-3, 1.20e-3, err_xx=0.04),
+            row(1, 1, 6, 1.02e-3, 1.24e-3, err_xx=0.04)]
+    m = shape_means(rows)[(1.0, 1.0)]
+    assert m["k_xx_over_kozeny_carman"]["mean"] == pytest.approx(1.22)
+    assert m["k_xx_over_kozeny_carman"]["sys"] == pytest.approx(0.04 * 1.22, rel=1e-12)
+    assert m["k_zz_over_kozeny_carman"]["sys"] == pytest.approx(0.01 * 1.01, rel=1e-12)
 
 
 def sd_by_hand():
@@ -141,6 +150,10 @@ def test_the_summary_groups_shapes_by_verdict():
                            ("undecided", [(1.0, 3.0)])]
     assert got["anisotropy"] == [("k_xx > k_zz", [(2.0, 2.0)]),
                                  ("undecided", [(1.0, 1.0), (1.0, 3.0), (3.0, 1.0)])]
+    # every row has the same k_KC, so k / k_KC is k scaled, with k's relative errors: the same
+    # verdicts as k in each direction
+    assert got["k_zz_over_kozeny_carman"] == got["k_zz"]
+    assert got["k_xx_over_kozeny_carman"] == got["k_xx"]
 
 
 def test_the_cost_sums_every_solve_once():

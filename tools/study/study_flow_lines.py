@@ -6,7 +6,8 @@ deposit).
     deposit_row(json) -> the deposit's k_zz, k_xx, k_xx / k_zz, k_zz / k_KC, k_xx / k_KC with
                          their errors, and its cost (deposit_cost)
     shape_means(rows) -> per shape the seeds' mean of each quantity and its two errors
-    verdicts(means)   -> each shape against the spheres (k) and against isotropy (k_xx / k_zz)
+    verdicts(means)   -> each shape against the spheres (k, k / k_KC) and against isotropy
+                         (k_xx / k_zz)
     prolate_against_oblate(means) -> at equal aspect ratio, the prolate shape less the oblate
     line_trends(means) -> the slope of each quantity against a/c along each line
     scatter_check(rows) -> each shape's own seed scatter and whether the shapes scatter alike
