@@ -7,7 +7,7 @@ exact and published results, on meshes small enough for seconds.
   slab's planes as symmetry planes) and along z (the mirrored slab) for walls normal to y,
   and a half slit against a symmetry plane (walls normal to z);
 - Stokes flow through a simple cubic array of spheres against Zick & Homsy (1982), Table 2;
-- 2 ranks against 1;
+- 2 ranks against 1; a write cut short by the end of the solve is not read;
 - the whole tool (pores.py --flow) on a simple cubic lattice's run folder: cubic symmetry
   k_xx = k_yy = k_zz, units of d^2, Zick & Homsy's value at the touching fraction.
 OpenFOAM must be installed (`./ellipsoid-dep pores DIR --flow` installs Debian's openfoam);
@@ -195,3 +195,35 @@ def test_bad_input(tmp_path, capsys):
     write_run_folder(closed, centres, semi, [(0, 2), (0, 2), (0, 8)], 2.0, 6.0)
     code, err = run_tool([closed, "--quiet", "--flow"], capsys)
     assert code == 2 and "no connected pore path" in err
+
+
+def test_a_write_cut_short_is_not_read(tmp_path):
+    """simpleFoam can be ended while it writes a later time than the converged one (its output
+    reaches the monitor through a pipe, late): the newest time whose U every rank wrote to its
+    trailer line is read, never one older than the converged write"""
+    trailer = "\n\n// " + "*" * 73 + " //\n"
+
+    def write_u(folder, time, whole):
+        os.makedirs(folder / time, exist_ok=True)
+        (folder / time / "U").write_text("internalField nonuniform List<vector> 1\n((1 0 0))\n;"
+                                         + (trailer if whole else "\n"))
+
+    case = tmp_path / "case"
+    write_u(case, "0", True)
+    write_u(case, "250", True)
+    write_u(case, "260", False)
+    assert pore_flow.newest_complete_time([str(case)], 250) == "250"
+    with pytest.raises(pore_flow.FlowError, match="older than the converged"):
+        pore_flow.newest_complete_time([str(case)], 255)
+    ranks = [tmp_path / "processor0", tmp_path / "processor1"]
+    for rank in ranks:
+        write_u(rank, "250", True)
+        write_u(rank, "260", True)
+    write_u(ranks[1], "260", False)    # one rank cut short
+    assert pore_flow.newest_complete_time(list(map(str, ranks)), 250) == "250"
+    write_u(ranks[1], "260", True)
+    assert pore_flow.newest_complete_time(list(map(str, ranks)), 250) == "260"
+    cut = tmp_path / "cut"
+    write_u(cut, "10", False)
+    with pytest.raises(pore_flow.FlowError, match="no complete result"):
+        pore_flow.newest_complete_time([str(cut)], None)

@@ -30,7 +30,7 @@ NU = 1.0                 # kinematic viscosity
 BODY_FORCE = 1.0e-3      # g (pressure gradient per density); Re = <u> L / nu stays << 1
 TOLERANCE = 1.0e-6       # initial residuals of U and p at which the solve stops
 MAX_ITERATIONS = 4000
-WRITE_EVERY = 10         # iterations between writes of the fields (the last one is kept)
+WRITE_EVERY = 10         # iterations between writes of the fields (the last two are kept)
 PARALLEL_CELLS = 300_000  # decomposePar onto 2 ranks above this many cells
 DIRECTIONS = {"xx": 0, "yy": 1, "zz": 2}
 NICENESS = 10            # the machine is shared: every OpenFOAM utility runs at this niceness
@@ -128,7 +128,7 @@ endTime %d;
 deltaT 1;
 writeControl timeStep;
 writeInterval %d;
-purgeWrite 1;
+purgeWrite 2;
 writeFormat ascii;
 writePrecision 12;
 writeCompression off;
@@ -273,12 +273,41 @@ class ResidualMonitor:
             self.residuals[m.group(1)] = float(m.group(2))
 
 
-def read_velocity(case, ncells):
-    """the internal velocity field of the latest time (ascii) -> (ncells, 3)"""
-    times = [d for d in os.listdir(case) if re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"]
-    if not times:
-        raise FlowError("simpleFoam wrote no result")
-    latest = max(times, key=float)
+def written_times(folder):
+    """the time folders simpleFoam wrote in folder (not the start fields), newest first"""
+    return sorted((d for d in os.listdir(folder) if re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"),
+                  key=float, reverse=True)
+
+
+def complete(path):
+    """whether OpenFOAM finished writing the file: it ends every file with its trailer line"""
+    try:
+        with open(path, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            f.seek(max(0, f.tell() - 200))
+            return f.read().rstrip().endswith(b"// " + b"*" * 73 + b" //")
+    except OSError:
+        return False
+
+
+def newest_complete_time(folders, last_write):
+    """the newest time whose U every folder (the case, or each rank's processor folder) holds
+    complete. The monitor ends simpleFoam once it has read past the write of last_write, but it
+    reads the solver's output through a pipe and may lag behind it: the solver can be killed
+    while writing a later time. The write before that one, kept by purgeWrite 2, is complete
+    and no older than last_write."""
+    common = set.intersection(*(set(written_times(f)) for f in folders))
+    for t in sorted(common, key=float, reverse=True):
+        if all(complete(os.path.join(f, t, "U")) for f in folders):
+            if last_write is not None and float(t) < last_write:
+                raise FlowError("the newest complete write, %s, is older than the converged "
+                                "one, %d" % (t, last_write))
+            return t
+    raise FlowError("simpleFoam wrote no complete result")
+
+
+def read_velocity(case, ncells, latest):
+    """the internal velocity field of time latest (ascii) -> (ncells, 3)"""
     with open(os.path.join(case, latest, "U")) as f:
         text = f.read()
     m = re.search(r"internalField\s+nonuniform\s+List<vector>\s*(\d+)\s*\(", text)
@@ -295,9 +324,8 @@ def read_velocity(case, ncells):
 def solve(case, key, ncells, total, parallel, progress, label):
     """one direction on the mesh in case: (k, residuals, iterations, simpleFoam's CPU s)"""
     a = DIRECTIONS[key]
-    for d in os.listdir(case):
-        if d.startswith("processor") or (re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"):
-            shutil.rmtree(os.path.join(case, d))
+    for d in [d for d in os.listdir(case) if d.startswith("processor")] + written_times(case):
+        shutil.rmtree(os.path.join(case, d))
     monitor = ResidualMonitor(progress, key, label)
     progress("%s: simpleFoam on %d cells, %d rank%s" % (monitor.name, ncells, 1 + parallel,
                                                           "s" if parallel else ""))
@@ -305,10 +333,13 @@ def solve(case, key, ncells, total, parallel, progress, label):
         foam(case, "decomposePar -force")
         foam(case, "mpirun -np 2 simpleFoam -parallel", log="simpleFoam." + key,
              on_line=monitor)
-        foam(case, "reconstructPar -latestTime")
+        ranks = sorted(os.path.join(case, d) for d in os.listdir(case) if d.startswith("processor"))
+        latest = newest_complete_time(ranks, monitor.last_write)
+        foam(case, "reconstructPar -time %s" % latest)
     else:
         foam(case, "simpleFoam", log="simpleFoam." + key, on_line=monitor)
-    u, iterations = read_velocity(case, ncells)
+        latest = newest_complete_time([case], monitor.last_write)
+    u, iterations = read_velocity(case, ncells, latest)
     residuals = dict(monitor.completed if monitor.stopped else monitor.residuals)
     if not monitor.converged:
         raise FlowError("flow %s did not converge in %d iterations (residuals %s)"
